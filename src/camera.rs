@@ -1,0 +1,153 @@
+//! The pinhole camera of the handout's section 1: world to camera space by
+//! `P' = (P - C) R` (eq. 8) and the projection `x = f X/Z + W/2` (eq. 3, 4),
+//! truncated to whole pixels as the handout's `VertexShader` does.
+
+use glam::Vec3;
+
+/// Where the camera is, where it looks and how it projects.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    /// C in eq. 5: the pinhole's position in world space.
+    pub position: Vec3,
+    /// Turn about the y-axis, in radians; positive turns the view to the right.
+    pub yaw: f32,
+    /// Tilt, in radians; positive looks up (toward -y).
+    pub pitch: f32,
+    /// f in eq. 1 to 4, in pixels.
+    pub focal: f32,
+    pub width: u32,
+    pub height: u32,
+}
+
+/// A vertex after the handout's `VertexShader`: its pixel and its inverse depth.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Projected {
+    pub x: i32,
+    pub y: i32,
+    /// 1/z in camera space; positive in front of the camera.
+    pub zinv: f32,
+}
+
+/// Projected coordinates farther than this from the screen centre mark a vertex that
+/// the unclipped core cannot draw safely (it is behind, at or extremely near the
+/// camera's plane). Polygons with such a vertex are skipped.
+pub const MAX_PIXEL_COORDINATE: f32 = (1 << 20) as f32;
+
+impl Camera {
+    /// The course skeleton's camera: at (0, 0, -3.001), looking along +z, f = 500.
+    pub fn handout(width: u32, height: u32) -> Self {
+        Camera {
+            position: Vec3::new(0.0, 0.0, -3.001),
+            yaw: 0.0,
+            pitch: 0.0,
+            focal: 500.0,
+            width,
+            height,
+        }
+    }
+
+    /// The columns of R: the camera's right, down and forward directions in world space.
+    pub fn axes(&self) -> [Vec3; 3] {
+        let (sa, ca) = self.yaw.sin_cos();
+        let (sp, cp) = self.pitch.sin_cos();
+        let forward = Vec3::new(sa * cp, -sp, ca * cp);
+        let right = Vec3::new(ca, 0.0, -sa);
+        let down = forward.cross(right);
+        [right, down, forward]
+    }
+
+    /// The camera with R computed once, ready to transform many vertices.
+    pub fn projection(&self) -> Projection {
+        Projection {
+            position: self.position,
+            axes: self.axes(),
+            focal: self.focal,
+            half_width: (self.width / 2) as i32,
+            half_height: (self.height / 2) as i32,
+        }
+    }
+
+    /// `P' = (P - C) R` for one point (eq. 8).
+    pub fn to_camera(&self, world: Vec3) -> Vec3 {
+        self.projection().to_camera(world)
+    }
+}
+
+/// A camera's eq. 8 and eq. 3, 4 with the rotation R already built.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Projection {
+    position: Vec3,
+    axes: [Vec3; 3],
+    focal: f32,
+    half_width: i32,
+    half_height: i32,
+}
+
+impl Projection {
+    /// `P' = (P - C) R` with P a row vector (eq. 8): one dot product per column of R,
+    /// summed left to right as glm's `vec3 * mat3` does.
+    #[inline]
+    pub fn to_camera(&self, world: Vec3) -> Vec3 {
+        let p = world - self.position;
+        let [right, down, forward] = self.axes;
+        Vec3::new(dot(p, right), dot(p, down), dot(p, forward))
+    }
+
+    /// The handout's `VertexShader` projection, in f32:
+    /// `zinv = 1/z; x = int(f * x * zinv) + W/2`, truncating toward zero before the
+    /// half size is added. Returns `None` for a vertex that cannot be drawn without
+    /// clipping: at or behind the camera plane, or projected absurdly far away.
+    #[inline]
+    pub fn project(&self, camera_space: Vec3) -> Option<Projected> {
+        let zinv = 1.0 / camera_space.z;
+        let x = self.focal * camera_space.x * zinv;
+        let y = self.focal * camera_space.y * zinv;
+        let inside = |v: f32| v.abs() < MAX_PIXEL_COORDINATE; // false for NaN too
+        if !(zinv > 0.0 && zinv.is_finite() && inside(x) && inside(y)) {
+            return None;
+        }
+        Some(Projected {
+            x: x as i32 + self.half_width,
+            y: y as i32 + self.half_height,
+            zinv,
+        })
+    }
+}
+
+fn dot(a: Vec3, b: Vec3) -> f32 {
+    a.x * b.x + a.y * b.y + a.z * b.z
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn yaw_and_pitch_zero_give_the_identity() {
+        let c = Camera::handout(500, 500);
+        assert_eq!(c.axes(), [Vec3::X, Vec3::Y, Vec3::Z]);
+        assert_eq!(c.to_camera(Vec3::ZERO), Vec3::new(0.0, 0.0, 3.001));
+    }
+
+    #[test]
+    fn positive_yaw_turns_right_and_positive_pitch_looks_up() {
+        let mut c = Camera::handout(500, 500);
+        c.position = Vec3::ZERO;
+        c.yaw = 90f32.to_radians();
+        // Looking along +x now: a point at +x is straight ahead.
+        let p = c.to_camera(Vec3::X);
+        assert!(p.abs_diff_eq(Vec3::Z, 1e-6), "{p}");
+        c.yaw = 0.0;
+        c.pitch = 90f32.to_radians();
+        let p = c.to_camera(-Vec3::Y);
+        assert!(p.abs_diff_eq(Vec3::Z, 1e-6), "{p}");
+    }
+
+    #[test]
+    fn vertices_behind_the_camera_are_not_projected() {
+        let c = Camera::handout(500, 500);
+        assert_eq!(c.projection().project(Vec3::new(0.0, 0.0, -1.0)), None);
+        assert_eq!(c.projection().project(Vec3::new(1.0, 0.0, 0.0)), None);
+        assert_eq!(c.projection().project(Vec3::new(f32::NAN, 0.0, 1.0)), None);
+    }
+}

@@ -1,0 +1,193 @@
+//! The `rasterlab` command: parses arguments and calls the library.
+
+use clap::{Args, Parser, Subcommand};
+use glam::Vec3;
+use rasterlab::app::{self, Settings};
+use rasterlab::parse;
+use rasterlab::{StageName, View};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// A CPU rasterizer that reproduces the DH2323 lab 3 handout, stage by stage.
+///
+/// Each stage subcommand draws the Cornell box as one section of the handout does
+/// and writes a PNG. `rasterlab all --out figures` writes every figure.
+#[derive(Parser, Debug)]
+#[command(name = "rasterlab", version)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Section 2: the projected vertices as white points (Figure 2).
+    Points(Render),
+    /// Section 3: the triangles' edges as white lines (Figure 3).
+    Wireframe(Render),
+    /// Section 4: triangles filled in scene order, no depth test (Figure 4).
+    Filled(Render),
+    /// Section 5: filled triangles behind a depth buffer of 1/z (Figure 5).
+    Depth(Interpolating),
+    /// Section 6.1: equations 10 and 11 at each vertex, interpolated (Figure 6).
+    VertexLight(Interpolating),
+    /// Section 6.2: equations 10 and 11 at each pixel (Figure 7; Figure 8 with --affine).
+    PixelLight(Interpolating),
+    /// Every figure (fig2 to fig8) and fig1-overview.png, all stages side by side.
+    All(AllArgs),
+    /// Prints ComputePolygonRows for a convex polygon, as the handout's section 4 test.
+    ///
+    /// Example: `rasterlab rows 10,5 5,10 15,15` prints the handout's 11 rows.
+    Rows(RowsArgs),
+}
+
+/// The view: image size, camera and light. Vectors are X,Y,Z and may be negative.
+#[derive(Args, Debug)]
+struct SceneArgs {
+    /// Image size in pixels, WIDTHxHEIGHT.
+    #[arg(long, value_name = "WxH", default_value = "500x500", value_parser = parse::size)]
+    size: (u32, u32),
+    /// Focal length f in pixels (eq. 1 to 4).
+    #[arg(long, value_name = "F", default_value = "500", value_parser = parse::positive)]
+    focal: f32,
+    /// Camera position C (eq. 5) in world space; y points down.
+    #[arg(long, value_name = "X,Y,Z", default_value = "0,0,-3.001",
+          value_parser = parse::vec3, allow_hyphen_values = true)]
+    camera: Vec3,
+    /// Turn about the y-axis, in degrees; positive turns right.
+    #[arg(long, value_name = "DEG", default_value = "0", value_parser = parse::finite,
+          allow_hyphen_values = true)]
+    yaw: f32,
+    /// Tilt, in degrees; positive looks up.
+    #[arg(long, value_name = "DEG", default_value = "0", value_parser = parse::finite,
+          allow_hyphen_values = true)]
+    pitch: f32,
+    /// Light position (section 6.1).
+    #[arg(long, value_name = "X,Y,Z", default_value = "0,-0.5,-0.7",
+          value_parser = parse::vec3, allow_hyphen_values = true)]
+    light: Vec3,
+    /// Light power P of eq. 10, the same in each channel (lab 2 used 14).
+    #[arg(long, value_name = "P", default_value = "1.1", value_parser = parse::finite,
+          allow_hyphen_values = true)]
+    light_power: f32,
+    /// Indirect light N of eq. 11, the same in each channel.
+    #[arg(long, value_name = "N", default_value = "0.5", value_parser = parse::finite,
+          allow_hyphen_values = true)]
+    indirect: f32,
+}
+
+impl SceneArgs {
+    fn settings(&self) -> Settings {
+        Settings {
+            width: self.size.0,
+            height: self.size.1,
+            focal: self.focal,
+            camera: self.camera,
+            yaw: self.yaw,
+            pitch: self.pitch,
+            light: self.light,
+            light_power: self.light_power,
+            indirect: self.indirect,
+        }
+    }
+}
+
+#[derive(Args, Debug)]
+struct Render {
+    /// Output PNG [default: <stage>.png]
+    #[arg(short, long, value_name = "FILE")]
+    out: Option<PathBuf>,
+    /// Also render N times and print the median render time on stderr (no file I/O timed).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=100_000))]
+    time: Option<u32>,
+    #[command(flatten)]
+    scene: SceneArgs,
+}
+
+#[derive(Args, Debug)]
+struct Interpolating {
+    /// Interpolate linearly in screen space, without perspective correction.
+    #[arg(long)]
+    affine: bool,
+    #[command(flatten)]
+    render: Render,
+}
+
+#[derive(Args, Debug)]
+struct AllArgs {
+    /// Folder for the figures (created if missing).
+    #[arg(long, value_name = "DIR", default_value = "figures")]
+    out: PathBuf,
+    #[command(flatten)]
+    scene: SceneArgs,
+}
+
+#[derive(Args, Debug)]
+struct RowsArgs {
+    /// The polygon's vertices as X,Y pixels, in order (either winding).
+    #[arg(required = true, value_name = "X,Y", value_parser = parse::point,
+          allow_hyphen_values = true)]
+    vertices: Vec<(i32, i32)>,
+}
+
+fn render(stage: StageName, affine: bool, args: &Render) -> Result<(), String> {
+    let view = View { stage, affine };
+    let out = args
+        .out
+        .clone()
+        .unwrap_or_else(|| PathBuf::from(format!("{}.png", stage.name())));
+    let settings = args.scene.settings();
+    let timing = app::render_to_file(view, &settings, &out, args.time.map(|n| n as usize))
+        .map_err(|e| e.to_string())?;
+    if let Some(t) = timing {
+        eprintln!("render: {t}");
+    }
+    eprintln!("wrote {}", out.display());
+    Ok(())
+}
+
+fn run(cli: Cli) -> Result<(), String> {
+    match &cli.command {
+        Command::Points(a) => render(StageName::Points, false, a),
+        Command::Wireframe(a) => render(StageName::Wireframe, false, a),
+        Command::Filled(a) => render(StageName::Filled, false, a),
+        Command::Depth(a) => render(StageName::Depth, a.affine, &a.render),
+        Command::VertexLight(a) => render(StageName::VertexLight, a.affine, &a.render),
+        Command::PixelLight(a) => render(StageName::PixelLight, a.affine, &a.render),
+        Command::All(a) => {
+            for path in app::render_all(&a.scene.settings(), &a.out).map_err(|e| e.to_string())? {
+                eprintln!("wrote {}", path.display());
+            }
+            Ok(())
+        }
+        Command::Rows(a) => {
+            print!("{}", app::rows_text(&a.vertices));
+            Ok(())
+        }
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) if !e.use_stderr() => {
+            // --help and --version: clap prints them in full.
+            let _ = e.print();
+            return ExitCode::SUCCESS;
+        }
+        Err(e) => {
+            // One line: clap's first, which names the problem; the usage is in --help.
+            let text = e.render().to_string();
+            let first = text.lines().next().unwrap_or("error: bad arguments");
+            eprintln!("{first} (see 'rasterlab --help')");
+            return ExitCode::from(2);
+        }
+    };
+    match run(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(message) => {
+            eprintln!("error: {message}");
+            ExitCode::from(1)
+        }
+    }
+}

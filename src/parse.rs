@@ -1,0 +1,129 @@
+//! Parsing the command line's values: sizes, vectors and 2D points. Each parser
+//! returns a one-line message naming what is wrong.
+
+use glam::Vec3;
+
+/// The largest width or height accepted: a 16384 x 16384 frame with its depth
+/// buffer and PNG rows takes about 3 GiB.
+pub const MAX_SIDE: u32 = 16384;
+
+/// `WxH`, both at least 1 and at most [`MAX_SIDE`].
+pub fn size(s: &str) -> Result<(u32, u32), String> {
+    let (w, h) = s
+        .split_once(['x', 'X'])
+        .ok_or_else(|| format!("expected WIDTHxHEIGHT such as 500x500, got '{s}'"))?;
+    let side = |t: &str| -> Result<u32, String> {
+        let v: u32 = t
+            .trim()
+            .parse()
+            .map_err(|_| format!("'{t}' is not a whole number of pixels in '{s}'"))?;
+        if v == 0 || v > MAX_SIDE {
+            return Err(format!(
+                "each side must be from 1 to {MAX_SIDE} pixels, got '{s}'"
+            ));
+        }
+        Ok(v)
+    };
+    Ok((side(w)?, side(h)?))
+}
+
+fn numbers(s: &str, n: usize, what: &str) -> Result<Vec<f32>, String> {
+    let parts: Vec<&str> = s.split(',').collect();
+    if parts.len() != n {
+        return Err(format!("expected {what}, got '{s}'"));
+    }
+    parts
+        .iter()
+        .map(|t| match t.trim().parse::<f32>() {
+            Ok(v) if v.is_finite() => Ok(v),
+            Ok(_) => Err(format!("'{t}' is not a finite number in '{s}'")),
+            Err(_) => Err(format!("'{t}' is not a number in '{s}'")),
+        })
+        .collect()
+}
+
+/// `X,Y,Z`: three finite numbers, e.g. `-0.5,0,-2`.
+pub fn vec3(s: &str) -> Result<Vec3, String> {
+    let v = numbers(s, 3, "three numbers X,Y,Z such as 0,-0.5,-0.7")?;
+    Ok(Vec3::new(v[0], v[1], v[2]))
+}
+
+/// A finite number.
+pub fn finite(s: &str) -> Result<f32, String> {
+    Ok(numbers(s, 1, "a number")?[0])
+}
+
+/// A finite number greater than zero.
+pub fn positive(s: &str) -> Result<f32, String> {
+    let v = finite(s)?;
+    if v > 0.0 {
+        Ok(v)
+    } else {
+        Err(format!("must be greater than 0, got '{s}'"))
+    }
+}
+
+/// The largest coordinate `rasterlab rows` takes, so a polygon's rows always fit.
+pub const MAX_ROWS_COORDINATE: i32 = 10_000;
+
+/// `X,Y`: a pixel position with whole coordinates within ±[`MAX_ROWS_COORDINATE`].
+pub fn point(s: &str) -> Result<(i32, i32), String> {
+    let parts: Vec<&str> = s.split(',').collect();
+    if parts.len() != 2 {
+        return Err(format!("expected a pixel X,Y such as 10,5, got '{s}'"));
+    }
+    let c = |t: &str| -> Result<i32, String> {
+        let v: i32 = t
+            .trim()
+            .parse()
+            .map_err(|_| format!("'{t}' is not a whole number in '{s}'"))?;
+        if v.abs() > MAX_ROWS_COORDINATE {
+            return Err(format!(
+                "coordinates must be within -{MAX_ROWS_COORDINATE}..{MAX_ROWS_COORDINATE}, got '{s}'"
+            ));
+        }
+        Ok(v)
+    };
+    Ok((c(parts[0])?, c(parts[1])?))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sizes() {
+        assert_eq!(size("500x400"), Ok((500, 400)));
+        assert_eq!(
+            size("0x0").unwrap_err(),
+            "each side must be from 1 to 16384 pixels, got '0x0'"
+        );
+        assert!(size("500").is_err());
+        assert!(size("20000x1").is_err());
+        assert!(size("-5x5").is_err());
+    }
+
+    #[test]
+    fn vectors() {
+        assert_eq!(vec3("-0.5,0,-2"), Ok(Vec3::new(-0.5, 0.0, -2.0)));
+        assert_eq!(
+            vec3("1,2").unwrap_err(),
+            "expected three numbers X,Y,Z such as 0,-0.5,-0.7, got '1,2'"
+        );
+        assert_eq!(
+            vec3("1,nan,2").unwrap_err(),
+            "'nan' is not a finite number in '1,nan,2'"
+        );
+        assert_eq!(vec3("1,a,2").unwrap_err(), "'a' is not a number in '1,a,2'");
+        assert!(positive("0").is_err());
+        assert_eq!(positive("2.5"), Ok(2.5));
+    }
+
+    #[test]
+    fn points() {
+        assert_eq!(point("10,5"), Ok((10, 5)));
+        assert_eq!(point("-3,4"), Ok((-3, 4)));
+        assert!(point("1.5,2").is_err());
+        assert!(point("20000,0").is_err());
+    }
+}

@@ -1,0 +1,214 @@
+//! The handout's `Draw`: every triangle goes through the vertex shader, is
+//! rasterized as points, lines or rows, and every pixel goes through the depth test
+//! (for stages that have one) and the pixel shader into the frame.
+
+use crate::camera::{Camera, Projection};
+use crate::interpolate::Pixel;
+use crate::light::Light;
+use crate::polygon::{compute_polygon_rows, draw_polygon_edges, draw_polygon_rows, Clip, Rows};
+use crate::scene::Triangle;
+use crate::stage::{
+    Affine, Correction, Depth, Filled, Perspective, PixelLight, Points, Primitive, Stage,
+    StageName, VertexLight, View, Wireframe,
+};
+use glam::Vec3;
+
+/// The image being drawn: colours as `0x00RRGGBB` (the layout a window wants) and,
+/// for stages that test depth, 1/z per pixel (0 = infinitely far).
+#[derive(Clone, Debug, Default)]
+pub struct Frame {
+    pub width: u32,
+    pub height: u32,
+    pub color: Vec<u32>,
+    /// Empty unless the last stage drawn uses a depth buffer.
+    pub depth: Vec<f32>,
+}
+
+impl Frame {
+    pub fn new(width: u32, height: u32) -> Self {
+        Frame {
+            width,
+            height,
+            color: vec![0; width as usize * height as usize],
+            depth: Vec::new(),
+        }
+    }
+
+    /// Black, and with `depth` a depth buffer cleared to 0 (section 5); without it
+    /// the depth buffer is dropped. Reuses the buffers when the size is unchanged.
+    pub fn clear(&mut self, width: u32, height: u32, depth: bool) {
+        let n = width as usize * height as usize;
+        self.width = width;
+        self.height = height;
+        self.color.clear();
+        self.color.resize(n, 0);
+        self.depth.clear();
+        if depth {
+            self.depth.resize(n, 0.0);
+        } else {
+            self.depth.shrink_to_fit();
+        }
+    }
+
+    /// The colour at (x, y) as 8-bit RGB.
+    pub fn rgb(&self, x: u32, y: u32) -> [u8; 3] {
+        let c = self.color[(y * self.width + x) as usize];
+        [(c >> 16) as u8, (c >> 8) as u8, c as u8]
+    }
+
+    /// The whole image as 8-bit RGB rows, top first.
+    pub fn to_rgb8(&self) -> Vec<u8> {
+        self.color
+            .iter()
+            .flat_map(|&c| [(c >> 16) as u8, (c >> 8) as u8, c as u8])
+            .collect()
+    }
+}
+
+/// A linear colour in [0, 1] as `0x00RRGGBB`, clamped and rounded to 8 bits.
+/// NaN becomes 0.
+#[inline]
+pub fn pack(c: Vec3) -> u32 {
+    let q = |v: f32| (v.clamp(0.0, 1.0) * 255.0 + 0.5) as u32;
+    (q(c.x) << 16) | (q(c.y) << 8) | q(c.z)
+}
+
+/// The handout's `VertexShader`: eq. 8, the truncating projection, and the stage's
+/// own per-vertex work. `None` for a vertex the unclipped core cannot draw.
+#[inline]
+pub fn vertex_shader<S: Stage>(
+    stage: &S,
+    projection: &Projection,
+    world: Vec3,
+    tri: &Triangle,
+) -> Option<Pixel<S::Varying>> {
+    let p = projection.project(projection.to_camera(world))?;
+    Some(Pixel {
+        x: p.x,
+        y: p.y,
+        v: stage.vertex_shader(world, p.zinv, tri),
+    })
+}
+
+/// The handout's `PixelShader`: the depth test (if the stage has a depth buffer),
+/// then the stage's colour into the frame. `p` is on the screen.
+#[inline(always)]
+fn pixel_shader<S: Stage>(stage: &S, frame: &mut Frame, p: Pixel<S::Varying>, tri: &Triangle) {
+    let i = p.y as usize * frame.width as usize + p.x as usize;
+    if S::DEPTH_BUFFER {
+        let zinv = S::zinv(&p.v);
+        // Nearer means larger 1/z. A NaN compares false and is never drawn.
+        if zinv <= frame.depth[i] || zinv.is_nan() {
+            return;
+        }
+        frame.depth[i] = zinv;
+    }
+    frame.color[i] = pack(stage.pixel_shader(&p.v, tri));
+}
+
+/// A stage with the buffers it reuses from one polygon and one frame to the next.
+pub struct Rasterizer<S: Stage> {
+    pub stage: S,
+    rows: Rows<S::Varying>,
+}
+
+impl<S: Stage> Rasterizer<S> {
+    pub fn new(stage: S) -> Self {
+        Rasterizer {
+            stage,
+            rows: Rows::new(),
+        }
+    }
+
+    /// The handout's `Draw`: clear the frame, then draw every triangle of `scene`.
+    pub fn draw(&mut self, scene: &[Triangle], camera: &Camera, frame: &mut Frame) {
+        frame.clear(camera.width, camera.height, S::DEPTH_BUFFER);
+        let projection = camera.projection();
+        let clip = Clip::screen(camera.width, camera.height);
+        let stage = &self.stage;
+        for tri in scene {
+            let corners = tri.vertices();
+            let pixel = |i: usize| vertex_shader(stage, &projection, corners[i], tri);
+            match S::PRIMITIVE {
+                Primitive::Points => {
+                    // Each vertex on its own: one behind the camera does not hide the others.
+                    for p in (0..3).filter_map(pixel) {
+                        if clip.x.contains(&p.x) && clip.y.contains(&p.y) {
+                            pixel_shader(stage, frame, p, tri);
+                        }
+                    }
+                }
+                Primitive::Lines | Primitive::Polygons => {
+                    let (Some(a), Some(b), Some(c)) = (pixel(0), pixel(1), pixel(2)) else {
+                        continue; // needs clipping, which the handout leaves out
+                    };
+                    let polygon = [a, b, c];
+                    if S::PRIMITIVE == Primitive::Lines {
+                        draw_polygon_edges(&polygon, &clip, |p| pixel_shader(stage, frame, p, tri));
+                    } else {
+                        compute_polygon_rows(&polygon, &clip, &mut self.rows);
+                        draw_polygon_rows(&self.rows, &clip, |p| {
+                            pixel_shader(stage, frame, p, tri)
+                        });
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Any stage's rasterizer behind one interface, for choosing a stage at run time.
+pub trait Draw {
+    fn draw(&mut self, scene: &[Triangle], camera: &Camera, frame: &mut Frame);
+}
+
+impl<S: Stage> Draw for Rasterizer<S> {
+    fn draw(&mut self, scene: &[Triangle], camera: &Camera, frame: &mut Frame) {
+        Rasterizer::draw(self, scene, camera, frame)
+    }
+}
+
+fn boxed<S: Stage + 'static>(stage: S) -> Box<dyn Draw> {
+    Box::new(Rasterizer::new(stage))
+}
+
+fn with_correction<C: Correction>(stage: StageName, light: Light) -> Box<dyn Draw> {
+    match stage {
+        StageName::Points => boxed(Points),
+        StageName::Wireframe => boxed(Wireframe),
+        StageName::Filled => boxed(Filled),
+        StageName::Depth => boxed(Depth::<C>::new()),
+        StageName::VertexLight => boxed(VertexLight::<C>::new(light)),
+        StageName::PixelLight => boxed(PixelLight::<C>::new(light)),
+    }
+}
+
+impl View {
+    /// The rasterizer for this figure, with `light` for the stages that shade.
+    pub fn rasterizer(self, light: Light) -> Box<dyn Draw> {
+        if self.affine {
+            with_correction::<Affine>(self.stage, light)
+        } else {
+            with_correction::<Perspective>(self.stage, light)
+        }
+    }
+
+    /// Draws this figure of `scene` into a new frame.
+    pub fn render(self, scene: &[Triangle], camera: &Camera, light: Light) -> Frame {
+        let mut frame = Frame::default();
+        self.rasterizer(light).draw(scene, camera, &mut frame);
+        frame
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pack_rounds_and_clamps() {
+        assert_eq!(pack(Vec3::new(1.0, 0.5, 0.0)), 0x00ff_8000);
+        assert_eq!(pack(Vec3::new(2.0, -1.0, f32::NAN)), 0x00ff_0000);
+        assert_eq!(pack(Vec3::splat(0.75)), 0x00bf_bfbf); // 191.25 rounds to 191
+    }
+}

@@ -1,0 +1,160 @@
+//! The handout's test model: the Cornell box with a short red and a tall blue block.
+//!
+//! The room and blocks are given in the units of the classic Cornell box data (side
+//! L = 555) and then scaled into the cube [-1, 1]^3 with x and y negated, so that y
+//! points down as in the handout's section 1.
+
+use glam::Vec3;
+
+/// A triangle with one colour (its reflectance) and one normal, as the handout's
+/// `Triangle` struct.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Triangle {
+    pub v0: Vec3,
+    pub v1: Vec3,
+    pub v2: Vec3,
+    pub normal: Vec3,
+    pub color: Vec3,
+}
+
+impl Triangle {
+    /// A triangle whose normal is `normalize((v2 - v0) x (v1 - v0))`, the winding the
+    /// test model uses so that normals point into the room.
+    pub fn new(v0: Vec3, v1: Vec3, v2: Vec3, color: Vec3) -> Self {
+        let normal = (v2 - v0).cross(v1 - v0).normalize_or_zero();
+        Triangle {
+            v0,
+            v1,
+            v2,
+            normal,
+            color,
+        }
+    }
+
+    /// The three corners in drawing order.
+    pub fn vertices(&self) -> [Vec3; 3] {
+        [self.v0, self.v1, self.v2]
+    }
+}
+
+pub const RED: Vec3 = Vec3::new(0.75, 0.15, 0.15);
+pub const YELLOW: Vec3 = Vec3::new(0.75, 0.75, 0.15);
+pub const GREEN: Vec3 = Vec3::new(0.15, 0.75, 0.15);
+pub const CYAN: Vec3 = Vec3::new(0.15, 0.75, 0.75);
+pub const BLUE: Vec3 = Vec3::new(0.15, 0.15, 0.75);
+pub const PURPLE: Vec3 = Vec3::new(0.75, 0.15, 0.75);
+pub const WHITE: Vec3 = Vec3::new(0.75, 0.75, 0.75);
+
+/// Side of the box in the source data.
+const L: f32 = 555.0;
+
+/// The ten triangles of a block whose eight corners are A..H (bottom A-D, top E-H).
+fn block(c: [Vec3; 8], color: Vec3, out: &mut Vec<Triangle>) {
+    let [a, b, cc, d, e, f, g, h] = c;
+    for (v0, v1, v2) in [
+        (e, b, a),
+        (e, f, b),
+        (f, d, b),
+        (f, h, d),
+        (h, cc, d),
+        (h, g, cc),
+        (g, e, cc),
+        (e, a, cc),
+        (g, f, e),
+        (g, h, f),
+    ] {
+        out.push(Triangle::new(v0, v1, v2, color));
+    }
+}
+
+fn corners(bottom: [[f32; 3]; 4], height: f32) -> [Vec3; 8] {
+    let b = bottom.map(Vec3::from_array);
+    let up = Vec3::new(0.0, height, 0.0);
+    [
+        b[0],
+        b[1],
+        b[2],
+        b[3],
+        b[0] + up,
+        b[1] + up,
+        b[2] + up,
+        b[3] + up,
+    ]
+}
+
+/// The handout's test model: 30 triangles, in the course skeleton's order
+/// (floor, left wall, right wall, ceiling, back wall, short block, tall block).
+pub fn cornell_box() -> Vec<Triangle> {
+    let mut t = Vec::with_capacity(30);
+    let room = corners(
+        [[L, 0.0, 0.0], [0.0, 0.0, 0.0], [L, 0.0, L], [0.0, 0.0, L]],
+        L,
+    );
+    let [a, b, c, d, e, f, g, h] = room;
+    for (v0, v1, v2, color) in [
+        (c, b, a, GREEN), // floor
+        (c, d, b, GREEN),
+        (a, e, c, PURPLE), // left wall
+        (c, e, g, PURPLE),
+        (f, b, d, YELLOW), // right wall
+        (h, f, d, YELLOW),
+        (e, f, g, CYAN), // ceiling
+        (f, h, g, CYAN),
+        (g, d, c, WHITE), // back wall
+        (g, h, d, WHITE),
+    ] {
+        t.push(Triangle::new(v0, v1, v2, color));
+    }
+    let short = [
+        [290.0, 0.0, 114.0],
+        [130.0, 0.0, 65.0],
+        [240.0, 0.0, 272.0],
+        [82.0, 0.0, 225.0],
+    ];
+    block(corners(short, 165.0), RED, &mut t);
+    let tall = [
+        [423.0, 0.0, 247.0],
+        [265.0, 0.0, 296.0],
+        [472.0, 0.0, 406.0],
+        [314.0, 0.0, 456.0],
+    ];
+    block(corners(tall, 330.0), BLUE, &mut t);
+
+    // Into [-1, 1]^3 as the course's LoadTestModel does: scale by 2/L (computed
+    // once, in f32), shift by -1, then flip x and y so y points down.
+    let scale = 2.0 / L;
+    let to_lab = |v: Vec3| {
+        let v = v * scale - Vec3::ONE;
+        Vec3::new(-v.x, -v.y, v.z)
+    };
+    t.into_iter()
+        .map(|tri| Triangle::new(to_lab(tri.v0), to_lab(tri.v1), to_lab(tri.v2), tri.color))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn thirty_triangles_inside_the_unit_cube() {
+        let tris = cornell_box();
+        assert_eq!(tris.len(), 30);
+        for t in &tris {
+            for v in t.vertices() {
+                assert!(v.abs().max_element() <= 1.0 + 1e-6, "{v}");
+            }
+            assert!((t.normal.length() - 1.0).abs() < 1e-5);
+        }
+    }
+
+    #[test]
+    fn normals_point_into_the_room() {
+        let tris = cornell_box();
+        // Floor (y = +1 after the flip) faces up, toward -y; back wall (z = 1) faces -z.
+        assert!(tris[0].normal.abs_diff_eq(Vec3::new(0.0, -1.0, 0.0), 1e-6));
+        assert!(tris[8].normal.abs_diff_eq(Vec3::new(0.0, 0.0, -1.0), 1e-6));
+        // Left wall (x = -1 after the flip) faces +x.
+        assert!(tris[2].normal.abs_diff_eq(Vec3::new(1.0, 0.0, 0.0), 1e-6));
+    }
+}

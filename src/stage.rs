@@ -1,0 +1,354 @@
+//! The handout's stages as types. A stage picks the primitive it draws, whether it
+//! needs a depth buffer, and the per-pixel data ([`Stage::Varying`]) that is
+//! interpolated between vertices. Everything else is the shared core in
+//! [`crate::render`].
+//!
+//! | stage | section | primitive | depth buffer | interpolated |
+//! |---|---|---|---|---|
+//! | [`Points`] | 2 | points | no | nothing |
+//! | [`Wireframe`] | 3 | lines | no | nothing |
+//! | [`Filled`] | 4 | polygons | no | nothing |
+//! | [`Depth`] | 5 | polygons | yes | 1/z |
+//! | [`VertexLight`] | 6.1 | polygons | yes | 1/z, eq. 11's light over z |
+//! | [`PixelLight`] | 6.2 | polygons | yes | 1/z, 3D position over z |
+
+use crate::interpolate::Varying;
+use crate::light::Light;
+use crate::scene::Triangle;
+use glam::Vec3;
+use std::marker::PhantomData;
+
+/// What a stage draws for each triangle.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Primitive {
+    /// Each projected vertex as one pixel (section 2).
+    Points,
+    /// Each edge as a line (section 3).
+    Lines,
+    /// Each triangle filled row by row (section 4).
+    Polygons,
+}
+
+/// One stage of the handout: its vertex and pixel shaders and what flows between them.
+pub trait Stage {
+    /// The per-pixel data the stage interpolates; `()` when it needs none.
+    type Varying: Varying;
+    const PRIMITIVE: Primitive;
+    /// Whether pixels go through the depth test of section 5.
+    const DEPTH_BUFFER: bool;
+
+    /// The stage's part of the handout's `VertexShader`: what a vertex at `world`
+    /// (with inverse camera depth `zinv`) of triangle `tri` hands to interpolation.
+    fn vertex_shader(&self, world: Vec3, zinv: f32, tri: &Triangle) -> Self::Varying;
+
+    /// 1/z at a pixel, for the depth test. Only called when `DEPTH_BUFFER`.
+    fn zinv(_v: &Self::Varying) -> f32 {
+        0.0
+    }
+
+    /// The colour part of the handout's `PixelShader` (the depth test is the core's).
+    fn pixel_shader(&self, v: &Self::Varying, tri: &Triangle) -> Vec3;
+}
+
+/// Section 2: the projected vertices, white on black.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Points;
+
+/// Section 3: the triangles' edges, white on black.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Wireframe;
+
+/// Section 4: triangles filled in their colour, in scene order (no occlusion).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Filled;
+
+macro_rules! unlit_stage {
+    ($stage:ty, $primitive:expr, $color:expr) => {
+        impl Stage for $stage {
+            type Varying = ();
+            const PRIMITIVE: Primitive = $primitive;
+            const DEPTH_BUFFER: bool = false;
+
+            fn vertex_shader(&self, _: Vec3, _: f32, _: &Triangle) {}
+
+            fn pixel_shader(&self, _: &(), tri: &Triangle) -> Vec3 {
+                let color: fn(&Triangle) -> Vec3 = $color;
+                color(tri)
+            }
+        }
+    };
+}
+
+unlit_stage!(Points, Primitive::Points, |_| Vec3::ONE);
+unlit_stage!(Wireframe, Primitive::Lines, |_| Vec3::ONE);
+unlit_stage!(Filled, Primitive::Polygons, |t| t.color);
+
+/// How a quantity that is linear in 3D is interpolated across the screen.
+///
+/// Only 1/z, and q/z for any such q, is linear in the image (section 6.2), so the
+/// correct way carries those and divides at the pixel. The affine way carries z and
+/// q themselves: the mistake behind the handout's Figure 8.
+pub trait Correction: Copy + Default + 'static {
+    /// True when interpolation is perspective-correct.
+    const PERSPECTIVE: bool;
+    /// What is interpolated for depth, from a vertex's 1/z.
+    fn depth(zinv: f32) -> f32;
+    /// 1/z at a pixel, from the interpolated depth.
+    fn zinv(depth: f32) -> f32;
+    /// What is interpolated for a quantity q at a vertex.
+    fn encode(q: Vec3, zinv: f32) -> Vec3;
+    /// q at a pixel, from what was interpolated and the pixel's 1/z.
+    fn decode(q: Vec3, zinv: f32) -> Vec3;
+}
+
+/// Interpolate 1/z and q/z; at the pixel q = (q/z) * z. The default.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Perspective;
+
+/// Interpolate z and q linearly in screen space (`--affine`).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Affine;
+
+impl Correction for Perspective {
+    const PERSPECTIVE: bool = true;
+    #[inline]
+    fn depth(zinv: f32) -> f32 {
+        zinv
+    }
+    #[inline]
+    fn zinv(depth: f32) -> f32 {
+        depth
+    }
+    #[inline]
+    fn encode(q: Vec3, zinv: f32) -> Vec3 {
+        q * zinv
+    }
+    #[inline]
+    fn decode(q: Vec3, zinv: f32) -> Vec3 {
+        q * (1.0 / zinv)
+    }
+}
+
+impl Correction for Affine {
+    const PERSPECTIVE: bool = false;
+    #[inline]
+    fn depth(zinv: f32) -> f32 {
+        1.0 / zinv
+    }
+    #[inline]
+    fn zinv(depth: f32) -> f32 {
+        1.0 / depth
+    }
+    #[inline]
+    fn encode(q: Vec3, _: f32) -> Vec3 {
+        q
+    }
+    #[inline]
+    fn decode(q: Vec3, _: f32) -> Vec3 {
+        q
+    }
+}
+
+/// Section 5: filled triangles behind a depth buffer of 1/z.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Depth<C = Perspective>(PhantomData<C>);
+
+impl<C: Correction> Depth<C> {
+    pub fn new() -> Self {
+        Depth(PhantomData)
+    }
+}
+
+impl<C: Correction> Stage for Depth<C> {
+    type Varying = f32;
+    const PRIMITIVE: Primitive = Primitive::Polygons;
+    const DEPTH_BUFFER: bool = true;
+
+    fn vertex_shader(&self, _: Vec3, zinv: f32, _: &Triangle) -> f32 {
+        C::depth(zinv)
+    }
+
+    #[inline]
+    fn zinv(v: &f32) -> f32 {
+        C::zinv(*v)
+    }
+
+    #[inline]
+    fn pixel_shader(&self, _: &f32, tri: &Triangle) -> Vec3 {
+        tri.color
+    }
+}
+
+/// Section 6.1: eq. 10 and 11 at each vertex; the reflected light is interpolated.
+#[derive(Clone, Copy, Debug)]
+pub struct VertexLight<C = Perspective> {
+    pub light: Light,
+    correction: PhantomData<C>,
+}
+
+impl<C: Correction> VertexLight<C> {
+    pub fn new(light: Light) -> Self {
+        VertexLight {
+            light,
+            correction: PhantomData,
+        }
+    }
+}
+
+impl<C: Correction> Stage for VertexLight<C> {
+    /// (depth, reflected light R of eq. 11, encoded for interpolation)
+    type Varying = (f32, Vec3);
+    const PRIMITIVE: Primitive = Primitive::Polygons;
+    const DEPTH_BUFFER: bool = true;
+
+    fn vertex_shader(&self, world: Vec3, zinv: f32, tri: &Triangle) -> (f32, Vec3) {
+        let reflected = self.light.reflected(world, tri.normal, tri.color);
+        (C::depth(zinv), C::encode(reflected, zinv))
+    }
+
+    #[inline]
+    fn zinv(v: &(f32, Vec3)) -> f32 {
+        C::zinv(v.0)
+    }
+
+    #[inline]
+    fn pixel_shader(&self, v: &(f32, Vec3), _: &Triangle) -> Vec3 {
+        C::decode(v.1, C::zinv(v.0))
+    }
+}
+
+/// Section 6.2: the 3D position is interpolated and eq. 10 and 11 run at each pixel,
+/// with the triangle's normal and reflectance (the handout's `currentNormal`,
+/// `currentReflectance`).
+#[derive(Clone, Copy, Debug)]
+pub struct PixelLight<C = Perspective> {
+    pub light: Light,
+    correction: PhantomData<C>,
+}
+
+impl<C: Correction> PixelLight<C> {
+    pub fn new(light: Light) -> Self {
+        PixelLight {
+            light,
+            correction: PhantomData,
+        }
+    }
+}
+
+impl<C: Correction> Stage for PixelLight<C> {
+    /// (depth, world position, encoded for interpolation)
+    type Varying = (f32, Vec3);
+    const PRIMITIVE: Primitive = Primitive::Polygons;
+    const DEPTH_BUFFER: bool = true;
+
+    fn vertex_shader(&self, world: Vec3, zinv: f32, _: &Triangle) -> (f32, Vec3) {
+        (C::depth(zinv), C::encode(world, zinv))
+    }
+
+    #[inline]
+    fn zinv(v: &(f32, Vec3)) -> f32 {
+        C::zinv(v.0)
+    }
+
+    #[inline]
+    fn pixel_shader(&self, v: &(f32, Vec3), tri: &Triangle) -> Vec3 {
+        let position = C::decode(v.1, C::zinv(v.0));
+        self.light.reflected(position, tri.normal, tri.color)
+    }
+}
+
+/// The stages by name, as the command line and the viewer know them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum StageName {
+    Points,
+    Wireframe,
+    Filled,
+    Depth,
+    VertexLight,
+    PixelLight,
+}
+
+impl StageName {
+    pub const ALL: [StageName; 6] = [
+        StageName::Points,
+        StageName::Wireframe,
+        StageName::Filled,
+        StageName::Depth,
+        StageName::VertexLight,
+        StageName::PixelLight,
+    ];
+
+    /// The subcommand's name.
+    pub fn name(self) -> &'static str {
+        match self {
+            StageName::Points => "points",
+            StageName::Wireframe => "wireframe",
+            StageName::Filled => "filled",
+            StageName::Depth => "depth",
+            StageName::VertexLight => "vertex-light",
+            StageName::PixelLight => "pixel-light",
+        }
+    }
+
+    /// Whether `--affine` changes anything for this stage.
+    pub fn interpolates(self) -> bool {
+        matches!(
+            self,
+            StageName::Depth | StageName::VertexLight | StageName::PixelLight
+        )
+    }
+}
+
+/// One of the handout's figures: a stage, and whether it interpolates affinely.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct View {
+    pub stage: StageName,
+    pub affine: bool,
+}
+
+impl View {
+    /// Figures 2 to 8, in the handout's order, as `rasterlab all` writes them.
+    pub const FIGURES: [View; 7] = [
+        View::of(StageName::Points),
+        View::of(StageName::Wireframe),
+        View::of(StageName::Filled),
+        View::of(StageName::Depth),
+        View::of(StageName::VertexLight),
+        View::of(StageName::PixelLight),
+        View {
+            stage: StageName::PixelLight,
+            affine: true,
+        },
+    ];
+
+    pub const fn of(stage: StageName) -> Self {
+        View {
+            stage,
+            affine: false,
+        }
+    }
+
+    /// The file name `rasterlab all` gives this figure (design notes).
+    pub fn figure_file(self) -> &'static str {
+        match (self.stage, self.affine) {
+            (StageName::Points, _) => "fig2-points.png",
+            (StageName::Wireframe, _) => "fig3-wireframe.png",
+            (StageName::Filled, _) => "fig4-filled.png",
+            (StageName::Depth, false) => "fig5-depth.png",
+            (StageName::Depth, true) => "fig5-depth-affine.png",
+            (StageName::VertexLight, false) => "fig6-vertex-light.png",
+            (StageName::VertexLight, true) => "fig6-vertex-light-affine.png",
+            (StageName::PixelLight, false) => "fig7-pixel-light.png",
+            (StageName::PixelLight, true) => "fig8-pixel-light-affine.png",
+        }
+    }
+
+    /// A short label: the stage name, with ` --affine` where it applies.
+    pub fn label(self) -> String {
+        if self.affine && self.stage.interpolates() {
+            format!("{} --affine", self.stage.name())
+        } else {
+            self.stage.name().to_string()
+        }
+    }
+}
