@@ -170,16 +170,25 @@ fn run(cli: Cli) -> Result<(), String> {
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
+        Err(e) if e.kind() == clap::error::ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            // Plain `rasterlab`: the help, but as the usage error it is.
+            let _ = e.print();
+            return ExitCode::from(2);
+        }
         Err(e) if !e.use_stderr() => {
             // --help and --version: clap prints them in full.
             let _ = e.print();
             return ExitCode::SUCCESS;
         }
         Err(e) => {
-            // One line: clap's first, which names the problem; the usage is in --help.
+            // One line: clap's message up to its usage block, joined; the usage is in --help.
             let text = e.render().to_string();
-            let first = text.lines().next().unwrap_or("error: bad arguments");
-            eprintln!("{first} (see 'rasterlab --help')");
+            let message: Vec<&str> = text
+                .lines()
+                .take_while(|l| !l.trim().is_empty())
+                .map(str::trim)
+                .collect();
+            eprintln!("{} (see 'rasterlab --help')", message.join(" "));
             return ExitCode::from(2);
         }
     };

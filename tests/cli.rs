@@ -1,0 +1,165 @@
+//! The command line: help, options, timing output, and bad input that must give a
+//! one-line error and the right exit code, never a panic or a half-written file.
+
+mod common;
+use common::temp_dir;
+use std::process::{Command, Output};
+
+fn rasterlab(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_rasterlab"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Asserts a usage error: exit code 2, and exactly one line on stderr that
+/// contains `needle`.
+fn usage_error(args: &[&str], needle: &str) {
+    let o = rasterlab(args);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+    assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
+    assert!(err.contains(needle), "{args:?}: {err}");
+    assert!(!err.contains("panicked"), "{args:?}: {err}");
+}
+
+#[test]
+fn every_subcommand_explains_itself() {
+    for (cmd, words) in [
+        ("points", "Section 2"),
+        ("wireframe", "Section 3"),
+        ("filled", "Section 4"),
+        ("depth", "Section 5"),
+        ("vertex-light", "Section 6.1"),
+        ("pixel-light", "Section 6.2"),
+        ("all", "fig1-overview.png"),
+        ("rows", "ComputePolygonRows"),
+    ] {
+        let o = rasterlab(&[cmd, "--help"]);
+        assert!(o.status.success(), "{cmd}");
+        let text = String::from_utf8(o.stdout).unwrap();
+        assert!(text.contains(words), "{cmd} --help: {text}");
+        if ["depth", "vertex-light", "pixel-light"].contains(&cmd) {
+            assert!(text.contains("--affine"), "{cmd} --help");
+        }
+        if cmd != "rows" {
+            for opt in [
+                "--size",
+                "--focal",
+                "--camera",
+                "--yaw",
+                "--pitch",
+                "--light",
+                "--light-power",
+                "--indirect",
+            ] {
+                assert!(text.contains(opt), "{cmd} --help lacks {opt}");
+            }
+        }
+    }
+}
+
+#[test]
+fn bad_arguments_are_one_line_usage_errors() {
+    usage_error(&["teapot"], "teapot");
+    usage_error(&["points", "--size", "0x0"], "from 1 to 16384");
+    usage_error(&["points", "--size", "500"], "WIDTHxHEIGHT");
+    usage_error(&["points", "--camera", "1,2"], "three numbers");
+    usage_error(&["points", "--camera", "1,x,2"], "'x' is not a number");
+    usage_error(
+        &["pixel-light", "--light", "0,inf,0"],
+        "not a finite number",
+    );
+    usage_error(&["points", "--focal", "0"], "greater than 0");
+    usage_error(&["points", "--affine"], "--affine");
+    usage_error(&["points", "--time", "0"], "--time");
+    usage_error(&["rows"], "X,Y");
+    usage_error(&["rows", "1,2", "3"], "expected a pixel X,Y");
+}
+
+#[test]
+fn an_unwritable_path_is_a_one_line_failure_and_leaves_no_file() {
+    let dir = temp_dir("unwritable");
+    let target = dir.join("no-such-folder").join("x.png");
+    let o = rasterlab(&["points", "-o", target.to_str().unwrap()]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.starts_with("error: cannot write "), "{err}");
+    assert!(err.contains("x.png"), "{err}");
+    assert!(!target.exists());
+    // A folder where the file should go: the temporary file is cleaned up.
+    let o = rasterlab(&["filled", "-o", dir.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let left: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(left.len(), 0, "{left:?}");
+}
+
+#[test]
+fn negative_vectors_and_timing() {
+    let dir = temp_dir("timing");
+    let out = dir.join("p.png");
+    let o = rasterlab(&[
+        "pixel-light",
+        "--camera",
+        "-0.5,0,-2",
+        "--yaw",
+        "-10",
+        "--size",
+        "64x48",
+        "--time",
+        "3",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    let err = stderr(&o);
+    assert!(o.status.success(), "{err}");
+    let line = err.lines().find(|l| l.starts_with("render: ")).expect(&err);
+    // render: median 0.84 ms (min 0.80 ms, max 0.95 ms, 3 runs)
+    let words: Vec<&str> = line.split_whitespace().collect();
+    assert_eq!(words[1], "median");
+    assert_eq!(
+        (words[3], words[4], words[6], words[7], words[9], words[10], words[11]),
+        ("ms", "(min", "ms,", "max", "ms,", "3", "runs)"),
+        "{line}"
+    );
+    for i in [2, 5, 8] {
+        assert!(words[i].parse::<f64>().is_ok(), "{line}");
+    }
+    let (w, h, _) = rasterlab::image_io::read_rgb_png(&out).unwrap();
+    assert_eq!((w, h), (64, 48));
+}
+
+#[test]
+fn all_writes_every_figure_and_the_overview() {
+    let dir = temp_dir("all");
+    let o = rasterlab(&["all", "--out", dir.to_str().unwrap(), "--size", "40x30"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let mut names: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    names.sort();
+    assert_eq!(
+        names,
+        [
+            "fig1-overview.png",
+            "fig2-points.png",
+            "fig3-wireframe.png",
+            "fig4-filled.png",
+            "fig5-depth.png",
+            "fig6-vertex-light.png",
+            "fig7-pixel-light.png",
+            "fig8-pixel-light-affine.png",
+        ]
+    );
+    let (w, h, _) = rasterlab::image_io::read_rgb_png(&dir.join("fig1-overview.png")).unwrap();
+    assert_eq!((w, h), (4 * 40 + 3 * 8, 2 * 30 + 8));
+}
