@@ -16,6 +16,7 @@
 
 pub mod app;
 pub mod camera;
+pub mod controls;
 pub mod image_io;
 pub mod interpolate;
 pub mod light;
@@ -26,6 +27,7 @@ pub mod render;
 pub mod scene;
 pub mod stage;
 pub mod timing;
+pub mod viewer;
 
 pub use camera::Camera;
 pub use interpolate::{interpolate, Pixel, Varying};

@@ -3,7 +3,7 @@
 use clap::{Args, Parser, Subcommand};
 use glam::Vec3;
 use rasterlab::app::{self, Settings};
-use rasterlab::parse;
+use rasterlab::{controls, parse, viewer};
 use rasterlab::{StageName, View};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -35,6 +35,14 @@ enum Command {
     PixelLight(Interpolating),
     /// Every figure (fig2 to fig8) and fig1-overview.png, all stages side by side.
     All(AllArgs),
+    /// Opens a window on a stage; walk with the arrows, move the light with a/w/s/d.
+    ///
+    /// Keys: up/down move, left/right turn, pageup/pagedown (or r/f) look up/down, left
+    /// mouse button + drag looks around; a/d, w/s, q/e move the light along x, z, y;
+    /// 1-7 switch figures (7 = pixel-light --affine); p toggles perspective-correct
+    /// interpolation; c saves a PNG; h prints the keys; Esc quits. On exit the
+    /// command that renders the last frame to a file is printed on stderr.
+    View(ViewArgs),
     /// Prints ComputePolygonRows for a convex polygon, as the handout's section 4 test.
     ///
     /// Example: `rasterlab rows 10,5 5,10 15,15` prints the handout's 11 rows.
@@ -123,6 +131,30 @@ struct AllArgs {
 }
 
 #[derive(Args, Debug)]
+struct ViewArgs {
+    /// The stage to show first: points, wireframe, filled, depth, vertex-light, pixel-light.
+    #[arg(value_name = "STAGE", default_value = "pixel-light", value_parser = parse::stage)]
+    stage: StageName,
+    /// Start with affine (not perspective-correct) interpolation.
+    #[arg(long)]
+    affine: bool,
+    /// Quit after N frames.
+    #[arg(long, value_name = "N")]
+    frames: Option<u64>,
+    /// Save the last frame to FILE when quitting.
+    #[arg(long, value_name = "FILE")]
+    screenshot: Option<PathBuf>,
+    /// Replay keys frame by frame, e.g. "right*30,w*10,up+left*5" (1/60 s per frame).
+    #[arg(long, value_name = "SCRIPT")]
+    keys: Option<controls::Script>,
+    /// Frames per second to aim for; 0 draws as fast as it can.
+    #[arg(long, value_name = "N", default_value = "60")]
+    fps: usize,
+    #[command(flatten)]
+    scene: SceneArgs,
+}
+
+#[derive(Args, Debug)]
 struct RowsArgs {
     /// The polygon's vertices as X,Y pixels, in order (either winding).
     #[arg(required = true, value_name = "X,Y", value_parser = parse::point,
@@ -158,6 +190,25 @@ fn run(cli: Cli) -> Result<(), String> {
             for path in app::render_all(&a.scene.settings(), &a.out).map_err(|e| e.to_string())? {
                 eprintln!("wrote {}", path.display());
             }
+            Ok(())
+        }
+        Command::View(a) => {
+            let options = viewer::Options {
+                settings: a.scene.settings(),
+                view: controls::view_of(a.stage, a.affine),
+                frames: a.frames,
+                screenshot: a.screenshot.clone(),
+                script: a.keys.clone().unwrap_or_default().0,
+                fps: a.fps,
+            };
+            let summary = viewer::run(options)?;
+            eprintln!(
+                "view: {} frames, frame time median {:.2} ms, draw median {:.2} ms",
+                summary.frames,
+                summary.frame_median.as_secs_f64() * 1e3,
+                summary.draw_median.as_secs_f64() * 1e3
+            );
+            eprintln!("view: last frame: {}", summary.reproduce());
             Ok(())
         }
         Command::Rows(a) => {

@@ -1,6 +1,7 @@
 //! Parsing the command line's values: sizes, vectors and 2D points. Each parser
 //! returns a one-line message naming what is wrong.
 
+use crate::stage::StageName;
 use glam::Vec3;
 
 /// The largest width or height accepted: a 16384 x 16384 frame with its depth
@@ -61,6 +62,14 @@ pub fn positive(s: &str) -> Result<f32, String> {
     } else {
         Err(format!("must be greater than 0, got '{s}'"))
     }
+}
+
+/// A stage's name: `points`, `wireframe`, `filled`, `depth`, `vertex-light`, `pixel-light`.
+pub fn stage(s: &str) -> Result<StageName, String> {
+    StageName::from_name(s).ok_or_else(|| {
+        let names: Vec<&str> = StageName::ALL.iter().map(|s| s.name()).collect();
+        format!("unknown stage '{s}': expected one of {}", names.join(", "))
+    })
 }
 
 /// The largest coordinate `rasterlab rows` takes, so a polygon's rows always fit.

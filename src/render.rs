@@ -160,11 +160,17 @@ impl<S: Stage> Rasterizer<S> {
 /// Any stage's rasterizer behind one interface, for choosing a stage at run time.
 pub trait Draw {
     fn draw(&mut self, scene: &[Triangle], camera: &Camera, frame: &mut Frame);
+    /// Moves the light; stages without light ignore it.
+    fn set_light(&mut self, light: Light);
 }
 
 impl<S: Stage> Draw for Rasterizer<S> {
     fn draw(&mut self, scene: &[Triangle], camera: &Camera, frame: &mut Frame) {
         Rasterizer::draw(self, scene, camera, frame)
+    }
+
+    fn set_light(&mut self, light: Light) {
+        self.stage.set_light(light)
     }
 }
 

@@ -48,6 +48,9 @@ pub trait Stage {
 
     /// The colour part of the handout's `PixelShader` (the depth test is the core's).
     fn pixel_shader(&self, v: &Self::Varying, tri: &Triangle) -> Vec3;
+
+    /// Moves the light, for stages that have one (the viewer's a, w, s, d).
+    fn set_light(&mut self, _light: Light) {}
 }
 
 /// Section 2: the projected vertices, white on black.
@@ -206,6 +209,10 @@ impl<C: Correction> Stage for VertexLight<C> {
         (C::depth(zinv), C::encode(reflected, zinv))
     }
 
+    fn set_light(&mut self, light: Light) {
+        self.light = light;
+    }
+
     #[inline]
     fn zinv(v: &(f32, Vec3)) -> f32 {
         C::zinv(v.0)
@@ -243,6 +250,10 @@ impl<C: Correction> Stage for PixelLight<C> {
 
     fn vertex_shader(&self, world: Vec3, zinv: f32, _: &Triangle) -> (f32, Vec3) {
         (C::depth(zinv), C::encode(world, zinv))
+    }
+
+    fn set_light(&mut self, light: Light) {
+        self.light = light;
     }
 
     #[inline]
@@ -288,6 +299,11 @@ impl StageName {
             StageName::VertexLight => "vertex-light",
             StageName::PixelLight => "pixel-light",
         }
+    }
+
+    /// The stage called `name`, as the subcommands spell it.
+    pub fn from_name(name: &str) -> Option<StageName> {
+        StageName::ALL.into_iter().find(|s| s.name() == name)
     }
 
     /// Whether `--affine` changes anything for this stage.

@@ -163,3 +163,20 @@ fn all_writes_every_figure_and_the_overview() {
     let (w, h, _) = rasterlab::image_io::read_rgb_png(&dir.join("fig1-overview.png")).unwrap();
     assert_eq!((w, h), (4 * 40 + 3 * 8, 2 * 30 + 8));
 }
+
+#[test]
+fn the_viewer_without_a_display_says_so() {
+    let o = Command::new(env!("CARGO_BIN_EXE_rasterlab"))
+        .args(["view", "--frames", "1"])
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .unwrap();
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.starts_with("error: no display"), "{err}");
+    assert!(err.contains("rasterlab all --out"), "{err}");
+    usage_error(&["view", "teapot"], "unknown stage 'teapot'");
+    usage_error(&["view", "--keys", "jump*3"], "unknown key 'jump'");
+}

@@ -1,0 +1,300 @@
+//! `rasterlab view`: the handout's interactive program, a window that redraws the
+//! scene every frame from the current camera and light (its `Update` and `Draw`
+//! loop). Keys are read through [`crate::controls`], so a key script replays the
+//! same way a person's key presses do.
+
+use crate::app::Settings;
+use crate::controls::{self, action, pressed, Action, Controls, Key, MouseLook};
+use crate::image_io::write_png;
+use crate::render::{Draw, Frame};
+use crate::scene::cornell_box;
+use crate::stage::View;
+use std::collections::VecDeque;
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+/// How a viewer session runs.
+#[derive(Clone, Debug)]
+pub struct Options {
+    pub settings: Settings,
+    pub view: View,
+    /// Quit after this many frames.
+    pub frames: Option<u64>,
+    /// Save the last frame here when quitting.
+    pub screenshot: Option<PathBuf>,
+    /// Keys held in each of the first frames (`--keys`); live input follows.
+    pub script: Vec<Vec<Key>>,
+    /// Frames per second to aim for; 0 draws as fast as possible.
+    pub fps: usize,
+}
+
+/// Seconds one scripted frame advances time by, so scripts replay exactly.
+pub const SCRIPT_FRAME_SECONDS: f32 = 1.0 / 60.0;
+/// Frames the title's median frame time is taken over.
+pub const TITLE_FRAMES: usize = 30;
+
+/// What a session did, for the closing lines on stderr.
+#[derive(Clone, Debug)]
+pub struct Summary {
+    pub frames: u64,
+    /// Median time from one frame to the next (draw, present, waiting).
+    pub frame_median: Duration,
+    /// Median time spent drawing.
+    pub draw_median: Duration,
+    pub settings: Settings,
+    pub view: View,
+}
+
+impl Summary {
+    /// The render command that draws the last frame again.
+    pub fn reproduce(&self) -> String {
+        command_for(self.view, &self.settings)
+    }
+}
+
+/// `rasterlab <stage> [--affine] --size .. --camera ..`: every setting, written so
+/// that it parses back to the same f32 values.
+pub fn command_for(view: View, s: &Settings) -> String {
+    let v = |v: glam::Vec3| format!("{},{},{}", v.x, v.y, v.z);
+    format!(
+        "rasterlab {}{} --size {}x{} --focal {} --camera {} --yaw {} --pitch {} --light {} --light-power {} --indirect {}",
+        view.stage.name(),
+        if view.affine { " --affine" } else { "" },
+        s.width,
+        s.height,
+        s.focal,
+        v(s.camera),
+        s.yaw,
+        s.pitch,
+        v(s.light),
+        s.light_power,
+        s.indirect
+    )
+}
+
+fn median(samples: impl Iterator<Item = Duration>) -> Duration {
+    let mut v: Vec<Duration> = samples.collect();
+    if v.is_empty() {
+        return Duration::ZERO;
+    }
+    v.sort();
+    v[v.len() / 2]
+}
+
+fn title(view: View, frame_times: &VecDeque<Duration>, draw: Duration) -> String {
+    let interpolation = if !view.stage.interpolates() {
+        "no interpolation"
+    } else if view.affine {
+        "affine"
+    } else {
+        "perspective-correct"
+    };
+    format!(
+        "rasterlab: {} ({}), frame {:.1} ms, draw {:.1} ms - h for keys",
+        view.stage.name(),
+        interpolation,
+        median(frame_times.iter().copied()).as_secs_f64() * 1e3,
+        draw.as_secs_f64() * 1e3
+    )
+}
+
+fn to_key(k: minifb::Key) -> Option<Key> {
+    use minifb::Key as M;
+    let digit = |d: u8| Some(Key::Char((b'0' + d) as char));
+    let index = k as u8;
+    match k {
+        M::Up => Some(Key::Up),
+        M::Down => Some(Key::Down),
+        M::Left => Some(Key::Left),
+        M::Right => Some(Key::Right),
+        M::PageUp => Some(Key::PageUp),
+        M::PageDown => Some(Key::PageDown),
+        M::Escape => Some(Key::Escape),
+        // minifb numbers Key0..Key9 from 0 and A..Z right after.
+        M::Key0
+        | M::Key1
+        | M::Key2
+        | M::Key3
+        | M::Key4
+        | M::Key5
+        | M::Key6
+        | M::Key7
+        | M::Key8
+        | M::Key9 => digit(index - M::Key0 as u8),
+        M::NumPad0 => digit(0),
+        M::NumPad1 => digit(1),
+        M::NumPad2 => digit(2),
+        M::NumPad3 => digit(3),
+        M::NumPad4 => digit(4),
+        M::NumPad5 => digit(5),
+        M::NumPad6 => digit(6),
+        M::NumPad7 => digit(7),
+        _ if (M::A as u8..=M::Z as u8).contains(&index) => {
+            Some(Key::Char((b'a' + index - M::A as u8) as char))
+        }
+        _ => None,
+    }
+}
+
+/// The first `rasterlab-<stage>-N.png` in the current folder that does not exist.
+fn free_capture_path(view: View) -> PathBuf {
+    let stem = view.label().replace(" --", "-");
+    (1..)
+        .map(|n| PathBuf::from(format!("rasterlab-{stem}-{n}.png")))
+        .find(|p| !p.exists())
+        .expect("some number is free")
+}
+
+fn save(frame: &Frame, path: &Path) -> Result<(), String> {
+    write_png(frame, path).map_err(|e| e.to_string())?;
+    eprintln!("saved {}", path.display());
+    Ok(())
+}
+
+/// Opens the window and runs until Esc, the window closing, or `frames`.
+pub fn run(options: Options) -> Result<Summary, String> {
+    if cfg!(target_os = "linux") && std::env::var_os("DISPLAY").is_none_or(|d| d.is_empty()) {
+        return Err(
+            "no display: DISPLAY is not set, so no window can open; run under a desktop or \
+             `xvfb-run -a rasterlab view`, or render to files with `rasterlab all --out figures`"
+                .into(),
+        );
+    }
+    let (w, h) = (
+        options.settings.width as usize,
+        options.settings.height as usize,
+    );
+    let mut window = minifb::Window::new("rasterlab", w, h, minifb::WindowOptions::default())
+        .map_err(|e| {
+            format!(
+                "cannot open a window ({e}); render to files instead with `rasterlab all --out figures`"
+            )
+        })?;
+    window.set_target_fps(options.fps);
+
+    let scene = cornell_box();
+    let controls = Controls::default();
+    let mut settings = options.settings;
+    let mut view = options.view;
+    let mut rasterizer: Box<dyn Draw> = view.rasterizer(settings.light());
+    let mut frame = Frame::default();
+    let mut held_before: Vec<Key> = Vec::new();
+    let mut mouse = MouseLook::default();
+    let mut frame_times: VecDeque<Duration> = VecDeque::with_capacity(TITLE_FRAMES);
+    let (mut all_frames, mut all_draws) = (Vec::new(), Vec::new());
+    let mut last_start = Instant::now();
+    let mut count: u64 = 0;
+
+    while window.is_open() && options.frames.is_none_or(|n| count < n) {
+        let start = Instant::now();
+        let scripted = options.script.get(count as usize);
+        let (held, dt) = match scripted {
+            Some(keys) => (keys.clone(), SCRIPT_FRAME_SECONDS),
+            None => {
+                let keys = window.get_keys().into_iter().filter_map(to_key).collect();
+                let dt = if count == 0 {
+                    0.0
+                } else {
+                    (start - last_start).as_secs_f32().min(0.1)
+                };
+                (keys, dt)
+            }
+        };
+        if count > 0 {
+            let ft = start - last_start;
+            if frame_times.len() == TITLE_FRAMES {
+                frame_times.pop_front();
+            }
+            frame_times.push_back(ft);
+            all_frames.push(ft);
+        }
+        last_start = start;
+
+        let mut quit = false;
+        for key in pressed(&held, &held_before) {
+            match action(key) {
+                Some(Action::Show(v)) => {
+                    view = v;
+                    rasterizer = view.rasterizer(settings.light());
+                }
+                Some(Action::TogglePerspective) => {
+                    view = controls::toggle_perspective(view);
+                    rasterizer = view.rasterizer(settings.light());
+                }
+                Some(Action::Save) => save(&frame, &free_capture_path(view))?,
+                Some(Action::Help) => eprintln!("{}", controls::HELP),
+                Some(Action::Quit) => quit = true,
+                None => {}
+            }
+        }
+        if quit {
+            break;
+        }
+        held_before = held.clone();
+        controls.apply_held(&held, dt, &mut settings);
+
+        // Mouse look while the left button is held (not during a script).
+        let button = scripted.is_none() && window.get_mouse_down(minifb::MouseButton::Left);
+        let position = window.get_mouse_pos(minifb::MouseMode::Pass);
+        if let Some((dx, dy)) = mouse.update(button, position) {
+            controls.apply_mouse(dx, dy, &mut settings);
+        }
+
+        rasterizer.set_light(settings.light());
+        let draw_start = Instant::now();
+        rasterizer.draw(&scene, &settings.camera(), &mut frame);
+        let draw = draw_start.elapsed();
+        all_draws.push(draw);
+        window
+            .update_with_buffer(&frame.color, w, h)
+            .map_err(|e| format!("cannot update the window: {e}"))?;
+        if count % 10 == 0 {
+            window.set_title(&title(view, &frame_times, draw));
+        }
+        count += 1;
+    }
+    if let Some(path) = &options.screenshot {
+        save(&frame, path)?;
+    }
+    Ok(Summary {
+        frames: count,
+        frame_median: median(all_frames.into_iter()),
+        draw_median: median(all_draws.into_iter()),
+        settings,
+        view,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::stage::StageName;
+
+    #[test]
+    fn keys_map_from_the_window_library() {
+        assert_eq!(to_key(minifb::Key::A), Some(Key::Char('a')));
+        assert_eq!(to_key(minifb::Key::Z), Some(Key::Char('z')));
+        assert_eq!(to_key(minifb::Key::Key7), Some(Key::Char('7')));
+        assert_eq!(to_key(minifb::Key::NumPad3), Some(Key::Char('3')));
+        assert_eq!(to_key(minifb::Key::PageUp), Some(Key::PageUp));
+        assert_eq!(to_key(minifb::Key::F1), None);
+    }
+
+    #[test]
+    fn the_reproducing_command_parses_back_exactly() {
+        let s = Settings {
+            yaw: 1.0 / 3.0,
+            camera: glam::Vec3::new(-0.1, 0.2, -2.9),
+            ..Settings::default()
+        };
+        let view = View {
+            stage: StageName::PixelLight,
+            affine: true,
+        };
+        assert_eq!(
+            command_for(view, &s),
+            "rasterlab pixel-light --affine --size 500x500 --focal 500 --camera -0.1,0.2,-2.9 \
+             --yaw 0.33333334 --pitch 0 --light 0,-0.5,-0.7 --light-power 1.1 --indirect 0.5"
+        );
+    }
+}
