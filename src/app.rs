@@ -7,7 +7,9 @@ use crate::interpolate::Pixel;
 use crate::light::Light;
 use crate::overview::overview;
 use crate::polygon::{compute_polygon_rows, Clip, Rows};
+use crate::raytrace;
 use crate::render::Frame;
+use crate::report;
 use crate::scene::{cornell_box, Triangle};
 use crate::stage::View;
 use crate::timing::{time_runs, Timing};
@@ -132,4 +134,55 @@ pub fn rows_text(vertices: &[(i32, i32)]) -> String {
         let _ = writeln!(out, "Start: ({},{}). End: ({},{}). ", l.x, l.y, r.x, r.y);
     }
     out
+}
+
+/// Ray-traces the Cornell box (the reference) and writes it to `out`; with `runs`,
+/// times that many traces.
+pub fn raytrace_to_file(
+    settings: &Settings,
+    options: &raytrace::Options,
+    out: &Path,
+    runs: Option<usize>,
+) -> Result<Option<Timing>, WriteError> {
+    let scene = cornell_box();
+    let (camera, light) = (settings.camera(), settings.light());
+    let mut traced = raytrace::raytrace(&scene, &camera, &light, options);
+    let timing = runs.map(|n| {
+        time_runs(n, || {
+            traced = raytrace::raytrace(&scene, &camera, &light, options)
+        })
+    });
+    write_png(&traced.frame, out)?;
+    Ok(timing)
+}
+
+/// The processor and core count, for saying where a report was made.
+pub fn machine() -> String {
+    let cpu = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|t| {
+            t.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split(':').nth(1))
+                .map(|s| s.trim().to_string())
+        })
+        .unwrap_or_else(|| "an unknown processor".into());
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    format!("{cpu}, {cores} cores (one used)")
+}
+
+/// `rasterlab report`: measures, then writes report.md, report.csv and
+/// error-vs-time.png into `dir`. Progress lines go to `progress`.
+pub fn report(
+    dir: &Path,
+    quick: bool,
+    progress: impl FnMut(&str),
+) -> Result<Vec<PathBuf>, WriteError> {
+    let plan = if quick {
+        report::Plan::quick()
+    } else {
+        report::Plan::full()
+    };
+    let rows = report::measure_all(&plan, progress);
+    report::write_report(&rows, &plan, dir, &machine())
 }

@@ -29,6 +29,32 @@ pub fn write_png(frame: &Frame, path: &Path) -> Result<(), WriteError> {
 
 /// Writes 8-bit RGB rows to `path` as a PNG, through a temporary file and a rename.
 pub fn write_rgb_png(rgb: &[u8], width: u32, height: u32, path: &Path) -> Result<(), WriteError> {
+    write_atomically(path, |out| {
+        let encoder = image::codecs::png::PngEncoder::new(out);
+        image::ImageEncoder::write_image(
+            encoder,
+            rgb,
+            width,
+            height,
+            image::ExtendedColorType::Rgb8,
+        )
+        .map_err(|e| e.to_string())
+    })
+}
+
+/// Writes text to `path`, through a temporary file and a rename.
+pub fn write_text(path: &Path, text: &str) -> Result<(), WriteError> {
+    write_atomically(path, |out| {
+        out.write_all(text.as_bytes()).map_err(|e| e.to_string())
+    })
+}
+
+/// Runs `write` on a temporary file beside `path`, then renames it into place; on
+/// any failure the temporary file is removed and `path` is left as it was.
+fn write_atomically(
+    path: &Path,
+    write: impl FnOnce(&mut BufWriter<fs::File>) -> Result<(), String>,
+) -> Result<(), WriteError> {
     let fail = |reason: String| WriteError {
         path: path.to_path_buf(),
         reason,
@@ -44,15 +70,7 @@ pub fn write_rgb_png(rgb: &[u8], width: u32, height: u32, path: &Path) -> Result
     let result = (|| {
         let file = fs::File::create(&tmp).map_err(|e| e.to_string())?;
         let mut out = BufWriter::new(file);
-        let encoder = image::codecs::png::PngEncoder::new(&mut out);
-        image::ImageEncoder::write_image(
-            encoder,
-            rgb,
-            width,
-            height,
-            image::ExtendedColorType::Rgb8,
-        )
-        .map_err(|e| e.to_string())?;
+        write(&mut out)?;
         out.flush().map_err(|e| e.to_string())?;
         drop(out);
         fs::rename(&tmp, path).map_err(|e| e.to_string())

@@ -3,7 +3,7 @@
 use clap::{Args, Parser, Subcommand};
 use glam::Vec3;
 use rasterlab::app::{self, Settings};
-use rasterlab::{controls, parse, viewer};
+use rasterlab::{controls, parse, raytrace, viewer};
 use rasterlab::{StageName, View};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -35,6 +35,14 @@ enum Command {
     PixelLight(Interpolating),
     /// Every figure (fig2 to fig8) and fig1-overview.png, all stages side by side.
     All(AllArgs),
+    /// The reference: ray-traces the same scene, one ray per pixel centre (lab 2).
+    ///
+    /// Nearest hit, equations 10 and 11 with the same code as the rasterizer; with
+    /// --shadows a hit that cannot see the light gets only indirect light.
+    Raytrace(RaytraceArgs),
+    /// Measures every stage against the ray tracer: error and draw time, as
+    /// report.md, report.csv and error-vs-time.png.
+    Report(ReportArgs),
     /// Opens a window on a stage; walk with the arrows, move the light with a/w/s/d.
     ///
     /// Keys: up/down move, left/right turn, pageup/pagedown (or r/f) look up/down, left
@@ -131,6 +139,32 @@ struct AllArgs {
 }
 
 #[derive(Args, Debug)]
+struct RaytraceArgs {
+    /// Cast a shadow ray to the light from every hit.
+    #[arg(long)]
+    shadows: bool,
+    /// N x N rays per pixel, spread over the pixel (anti-aliasing).
+    #[arg(long, value_name = "N", default_value = "1",
+          value_parser = clap::value_parser!(u32).range(1..=16))]
+    samples: u32,
+    /// The nearest triangle's flat colour instead of light (what filled and depth mean).
+    #[arg(long)]
+    flat: bool,
+    #[command(flatten)]
+    render: Render,
+}
+
+#[derive(Args, Debug)]
+struct ReportArgs {
+    /// Folder for report.md, report.csv and error-vs-time.png (created if missing).
+    #[arg(long, value_name = "DIR", default_value = "report")]
+    out: PathBuf,
+    /// A small, fast version (two small sizes, k = 1 and 2, two runs each).
+    #[arg(long)]
+    quick: bool,
+}
+
+#[derive(Args, Debug)]
 struct ViewArgs {
     /// The stage to show first: points, wireframe, filled, depth, vertex-light, pixel-light.
     #[arg(value_name = "STAGE", default_value = "pixel-light", value_parser = parse::stage)]
@@ -188,6 +222,42 @@ fn run(cli: Cli) -> Result<(), String> {
         Command::PixelLight(a) => render(StageName::PixelLight, a.affine, &a.render),
         Command::All(a) => {
             for path in app::render_all(&a.scene.settings(), &a.out).map_err(|e| e.to_string())? {
+                eprintln!("wrote {}", path.display());
+            }
+            Ok(())
+        }
+        Command::Raytrace(a) => {
+            let options = raytrace::Options {
+                shading: if a.flat {
+                    raytrace::Shading::Flat
+                } else {
+                    raytrace::Shading::Lit
+                },
+                shadows: a.shadows,
+                samples: a.samples,
+            };
+            let out = a
+                .render
+                .out
+                .clone()
+                .unwrap_or_else(|| PathBuf::from("raytrace.png"));
+            let timing = app::raytrace_to_file(
+                &a.render.scene.settings(),
+                &options,
+                &out,
+                a.render.time.map(|n| n as usize),
+            )
+            .map_err(|e| e.to_string())?;
+            if let Some(t) = timing {
+                eprintln!("render: {t}");
+            }
+            eprintln!("wrote {}", out.display());
+            Ok(())
+        }
+        Command::Report(a) => {
+            let written = app::report(&a.out, a.quick, |line| eprintln!("{line}"))
+                .map_err(|e| e.to_string())?;
+            for path in written {
                 eprintln!("wrote {}", path.display());
             }
             Ok(())

@@ -1,0 +1,225 @@
+//! How far a stage's image is from the reference, in numbers a student can compare.
+
+use crate::camera::Camera;
+use crate::render::Frame;
+use crate::scene::Triangle;
+
+/// Error of an image against a reference, in 8-bit units over all three channels.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ImageError {
+    pub rmse: f64,
+    pub max: u8,
+    /// 20 log10(255 / rmse) in dB; infinite for identical images.
+    pub psnr: f64,
+    /// Pixels compared.
+    pub pixels: usize,
+}
+
+fn channels(c: u32) -> [u8; 3] {
+    [(c >> 16) as u8, (c >> 8) as u8, c as u8]
+}
+
+/// RMSE, max and PSNR of `image` against `reference` over the pixels where `mask`
+/// is true (all pixels without a mask).
+pub fn image_error(image: &Frame, reference: &Frame, mask: Option<&[bool]>) -> ImageError {
+    assert_eq!(
+        image.color.len(),
+        reference.color.len(),
+        "images of different sizes"
+    );
+    let (mut sum, mut max, mut pixels) = (0u64, 0u8, 0usize);
+    for (i, (&a, &b)) in image.color.iter().zip(&reference.color).enumerate() {
+        if mask.is_some_and(|m| !m[i]) {
+            continue;
+        }
+        pixels += 1;
+        for (p, q) in channels(a).into_iter().zip(channels(b)) {
+            let d = p.abs_diff(q);
+            sum += (d as u64) * (d as u64);
+            max = max.max(d);
+        }
+    }
+    let rmse = if pixels == 0 {
+        0.0
+    } else {
+        (sum as f64 / (3 * pixels) as f64).sqrt()
+    };
+    ImageError {
+        rmse,
+        max,
+        psnr: 20.0 * (255.0 / rmse).log10(),
+        pixels,
+    }
+}
+
+/// The fraction of pixels (under `mask`) whose colour differs at all.
+pub fn differing_fraction(image: &Frame, reference: &Frame, mask: Option<&[bool]>) -> f64 {
+    let (mut differ, mut n) = (0usize, 0usize);
+    for (i, (a, b)) in image.color.iter().zip(&reference.color).enumerate() {
+        if mask.is_some_and(|m| !m[i]) {
+            continue;
+        }
+        n += 1;
+        differ += (a != b) as usize;
+    }
+    if n == 0 {
+        0.0
+    } else {
+        differ as f64 / n as f64
+    }
+}
+
+/// Interior pixels: those whose whole (2 margin + 1)² neighbourhood shows the same
+/// surface (same colour and normal) in `hit`, the reference's triangle per pixel.
+/// Near edges the rasterizer and the ray tracer sample differently (truncation
+/// versus pixel centres), so errors there say little about shading.
+pub fn interior_mask(
+    scene: &[Triangle],
+    hit: &[Option<u32>],
+    width: u32,
+    height: u32,
+    margin: u32,
+) -> Vec<bool> {
+    // Two triangles of one wall are one surface: name surfaces by their first triangle.
+    let surface: Vec<usize> = scene
+        .iter()
+        .map(|t| {
+            scene
+                .iter()
+                .position(|u| u.normal == t.normal && u.color == t.color)
+                .unwrap_or(0)
+        })
+        .collect();
+    let id = |x: u32, y: u32| hit[(y * width + x) as usize].map(|i| surface[i as usize]);
+    let mut mask = vec![false; (width * height) as usize];
+    let m = margin;
+    for y in m..height.saturating_sub(m) {
+        for x in m..width.saturating_sub(m) {
+            let centre = id(x, y);
+            mask[(y * width + x) as usize] = centre.is_some()
+                && (y - m..=y + m).all(|yy| (x - m..=x + m).all(|xx| id(xx, yy) == centre));
+        }
+    }
+    mask
+}
+
+/// Of the scene's projected vertices in front of the camera and on screen, how
+/// many are drawn within one pixel of where the exact projection `f X/Z + W/2`
+/// puts them: the pixel (x, y) covers [x, x + 1) x [y, y + 1), and counts if its
+/// centre is within 1 of the exact point on both axes. Returns (within, total).
+pub fn points_within_one_pixel(
+    scene: &[Triangle],
+    camera: &Camera,
+    frame: &Frame,
+) -> (usize, usize) {
+    let p = camera.projection();
+    let (w, h) = (camera.width as f64, camera.height as f64);
+    let (mut within, mut total) = (0, 0);
+    for v in scene.iter().flat_map(|t| t.vertices()) {
+        let c = p.to_camera(v);
+        if c.z <= 0.0 {
+            continue;
+        }
+        let ex = camera.focal as f64 * c.x as f64 / c.z as f64 + (camera.width / 2) as f64;
+        let ey = camera.focal as f64 * c.y as f64 / c.z as f64 + (camera.height / 2) as f64;
+        if !(0.0..w).contains(&ex) || !(0.0..h).contains(&ey) {
+            continue;
+        }
+        total += 1;
+        // Is there a drawn pixel whose centre is within 1 of the exact point?
+        let near = (ex.floor() as i64 - 1..=ex.floor() as i64 + 1).any(|x| {
+            (ey.floor() as i64 - 1..=ey.floor() as i64 + 1).any(|y| {
+                (0..w as i64).contains(&x)
+                    && (0..h as i64).contains(&y)
+                    && (x as f64 + 0.5 - ex).abs() <= 1.0
+                    && (y as f64 + 0.5 - ey).abs() <= 1.0
+                    && frame.color[(y as u32 * camera.width + x as u32) as usize] != 0
+            })
+        });
+        within += near as usize;
+    }
+    (within, total)
+}
+
+/// Of the lit pixels of a wireframe, how many have their centre within one pixel
+/// of an exactly projected edge. Returns (within, total).
+pub fn edge_pixels_within_one_pixel(
+    scene: &[Triangle],
+    camera: &Camera,
+    frame: &Frame,
+) -> (usize, usize) {
+    let p = camera.projection();
+    let half = ((camera.width / 2) as f64, (camera.height / 2) as f64);
+    let exact = |v| {
+        let c = p.to_camera(v);
+        (c.z > 0.0).then(|| {
+            (
+                camera.focal as f64 * c.x as f64 / c.z as f64 + half.0,
+                camera.focal as f64 * c.y as f64 / c.z as f64 + half.1,
+            )
+        })
+    };
+    let segments: Vec<((f64, f64), (f64, f64))> = scene
+        .iter()
+        .flat_map(|t| {
+            let v = t.vertices();
+            [(v[0], v[1]), (v[1], v[2]), (v[2], v[0])]
+        })
+        .filter_map(|(a, b)| Some((exact(a)?, exact(b)?)))
+        .collect();
+    let dist = |(px, py): (f64, f64), ((ax, ay), (bx, by)): ((f64, f64), (f64, f64))| {
+        let (dx, dy) = (bx - ax, by - ay);
+        let len2 = dx * dx + dy * dy;
+        let t = if len2 == 0.0 {
+            0.0
+        } else {
+            (((px - ax) * dx + (py - ay) * dy) / len2).clamp(0.0, 1.0)
+        };
+        ((px - ax - t * dx).powi(2) + (py - ay - t * dy).powi(2)).sqrt()
+    };
+    let (mut within, mut total) = (0, 0);
+    for y in 0..camera.height {
+        for x in 0..camera.width {
+            if frame.color[(y * camera.width + x) as usize] == 0 {
+                continue;
+            }
+            total += 1;
+            let centre = (x as f64 + 0.5, y as f64 + 0.5);
+            within += segments.iter().any(|&s| dist(centre, s) <= 1.0) as usize;
+        }
+    }
+    (within, total)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn identical_images_have_no_error() {
+        let mut a = Frame::new(4, 4);
+        a.color[5] = 0x0012_3456;
+        let e = image_error(&a, &a.clone(), None);
+        assert_eq!((e.rmse, e.max, e.pixels), (0.0, 0, 16));
+        assert!(e.psnr.is_infinite());
+        assert_eq!(differing_fraction(&a, &a, None), 0.0);
+    }
+
+    #[test]
+    fn one_pixel_off_by_a_known_amount() {
+        // One pixel of 10 x 10 off by 30 in one channel: the mean square over
+        // 300 values is 900 / 300 = 3, so the RMSE is sqrt(3).
+        let a = Frame::new(10, 10);
+        let mut b = a.clone();
+        b.color[42] = 30 << 8;
+        let e = image_error(&a, &b, None);
+        assert!((e.rmse - 3f64.sqrt()).abs() < 1e-12, "{}", e.rmse);
+        assert_eq!(e.max, 30);
+        assert!((e.psnr - 20.0 * (255.0 / 3f64.sqrt()).log10()).abs() < 1e-9);
+        assert_eq!(differing_fraction(&a, &b, None), 0.01);
+        // Masked out, the difference is gone.
+        let mut mask = vec![true; 100];
+        mask[42] = false;
+        assert_eq!(image_error(&a, &b, Some(&mask)).rmse, 0.0);
+    }
+}

@@ -1,0 +1,228 @@
+//! The reference: a ray tracer as in lab 2, one ray per pixel through its centre
+//! (or N x N rays with `samples`), nearest hit, the same eq. 10 and 11 as the
+//! rasterizer ([`Light::reflected`]). Everything the rasterizer's stages are
+//! measured against (`rasterlab report`) comes from here.
+
+use crate::camera::Camera;
+use crate::light::Light;
+use crate::render::{pack, Frame};
+use crate::scene::Triangle;
+use glam::Vec3;
+
+/// What the reference shows at a hit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Shading {
+    /// The nearest triangle's colour: what `filled` and `depth` mean to draw.
+    Flat,
+    /// Eq. 10 and 11 at the hit: what the lit stages approximate.
+    Lit,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Options {
+    pub shading: Shading,
+    /// Lab 2's shadow ray: a hit that cannot see the light gets only indirect light.
+    pub shadows: bool,
+    /// Rays per pixel along each axis (N x N in all), spread evenly over the pixel.
+    pub samples: u32,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            shading: Shading::Lit,
+            shadows: false,
+            samples: 1,
+        }
+    }
+}
+
+/// A traced image and, per pixel, the index of the triangle the centre ray hit.
+#[derive(Clone, Debug)]
+pub struct Traced {
+    pub frame: Frame,
+    pub hit: Vec<Option<u32>>,
+}
+
+/// Distance along `dir` to `tri` (Möller–Trumbore), if the ray hits it in front of
+/// `origin`. Hits closer than `EPSILON` are ignored so a shadow ray does not hit
+/// the surface it starts on.
+pub fn intersect(origin: Vec3, dir: Vec3, tri: &Triangle) -> Option<f32> {
+    const EPSILON: f32 = 1e-5;
+    let e1 = tri.v1 - tri.v0;
+    let e2 = tri.v2 - tri.v0;
+    let p = dir.cross(e2);
+    let det = e1.dot(p);
+    if det.abs() < 1e-12 {
+        return None; // parallel to the triangle's plane
+    }
+    let inv = 1.0 / det;
+    let s = origin - tri.v0;
+    let u = s.dot(p) * inv;
+    if !(0.0..=1.0).contains(&u) {
+        return None;
+    }
+    let q = s.cross(e1);
+    let v = dir.dot(q) * inv;
+    if v < 0.0 || u + v > 1.0 {
+        return None;
+    }
+    let t = e2.dot(q) * inv;
+    (t > EPSILON).then_some(t)
+}
+
+/// The nearest hit along a ray: (distance, triangle index).
+pub fn nearest(scene: &[Triangle], origin: Vec3, dir: Vec3) -> Option<(f32, usize)> {
+    let mut best: Option<(f32, usize)> = None;
+    for (i, tri) in scene.iter().enumerate() {
+        if let Some(t) = intersect(origin, dir, tri) {
+            if best.is_none_or(|(b, _)| t < b) {
+                best = Some((t, i));
+            }
+        }
+    }
+    best
+}
+
+/// The colour one ray brings back (black for a miss) and the triangle it hit.
+pub fn trace(
+    scene: &[Triangle],
+    light: &Light,
+    origin: Vec3,
+    dir: Vec3,
+    options: &Options,
+) -> (Vec3, Option<usize>) {
+    let Some((t, i)) = nearest(scene, origin, dir) else {
+        return (Vec3::ZERO, None);
+    };
+    let tri = &scene[i];
+    let color = match options.shading {
+        Shading::Flat => tri.color,
+        Shading::Lit => {
+            let hit = origin + dir * t;
+            let to_light = light.position - hit;
+            let blocked =
+                options.shadows && nearest(scene, hit, to_light).is_some_and(|(s, _)| s < 1.0);
+            if blocked {
+                tri.color * light.indirect
+            } else {
+                light.reflected(hit, tri.normal, tri.color)
+            }
+        }
+    };
+    (color, Some(i))
+}
+
+/// Traces the scene as `camera` sees it: the ray for screen point (sx, sy) goes
+/// through camera-space (sx - W/2, sy - H/2, f), the inverse of the rasterizer's
+/// projection, and pixel (x, y) is sampled at (x + 0.5, y + 0.5).
+pub fn raytrace(scene: &[Triangle], camera: &Camera, light: &Light, options: &Options) -> Traced {
+    let (w, h) = (camera.width, camera.height);
+    let [right, down, forward] = camera.axes();
+    let (half_w, half_h) = ((w / 2) as f32, (h / 2) as f32);
+    let n = options.samples.max(1);
+    let mut frame = Frame::new(w, h);
+    let mut hit = vec![None; (w * h) as usize];
+    for y in 0..h {
+        for x in 0..w {
+            let ray = |sx: f32, sy: f32| {
+                let dir = right * (sx - half_w) + down * (sy - half_h) + forward * camera.focal;
+                trace(scene, light, camera.position, dir, options)
+            };
+            let (x, y) = (x as f32, y as f32);
+            // The triangle under the pixel's centre, for telling edges from interiors.
+            let (centre_color, centre_hit) = ray(x + 0.5, y + 0.5);
+            let color = if n == 1 {
+                centre_color
+            } else {
+                let mut sum = Vec3::ZERO;
+                for j in 0..n {
+                    for i in 0..n {
+                        let (dx, dy) = ((i as f32 + 0.5) / n as f32, (j as f32 + 0.5) / n as f32);
+                        sum += ray(x + dx, y + dy).0;
+                    }
+                }
+                sum / (n * n) as f32
+            };
+            let idx = (y as u32 * w + x as u32) as usize;
+            frame.color[idx] = pack(color);
+            hit[idx] = centre_hit.map(|i| i as u32);
+        }
+    }
+    Traced { frame, hit }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::cornell_box;
+
+    #[test]
+    fn a_ray_hits_a_triangle_where_expected() {
+        let tri = Triangle::new(
+            Vec3::new(-1.0, -1.0, 2.0),
+            Vec3::new(1.0, -1.0, 2.0),
+            Vec3::new(0.0, 1.0, 2.0),
+            Vec3::ONE,
+        );
+        assert_eq!(intersect(Vec3::ZERO, Vec3::Z, &tri), Some(2.0));
+        assert_eq!(
+            intersect(Vec3::ZERO, -Vec3::Z, &tri),
+            None,
+            "behind the origin"
+        );
+        assert_eq!(
+            intersect(Vec3::new(5.0, 0.0, 0.0), Vec3::Z, &tri),
+            None,
+            "beside it"
+        );
+    }
+
+    #[test]
+    fn the_centre_pixel_sees_the_back_wall_lit_by_hand() {
+        // The ray through pixel (250, 150)'s centre hits the back wall (z = 1,
+        // normal -z). The hit is at camera distance 4.001, so
+        // x = 0.5 * 4.001 / 500 and y = -99.5 * 4.001 / 500.
+        let scene = cornell_box();
+        let camera = Camera::handout(500, 500);
+        let light = Light::handout();
+        let traced = raytrace(&scene, &camera, &light, &Options::default());
+        let idx = 150 * 500 + 250;
+        let wall = traced.hit[idx].unwrap() as usize;
+        assert!(wall == 8 || wall == 9, "back wall, got triangle {wall}");
+        let p = Vec3::new(0.5 * 4.001 / 500.0, -99.5 * 4.001 / 500.0, 1.0);
+        let r = light.position - p;
+        let d = 1.1 * (r.z.abs() / r.length()) / (4.0 * std::f32::consts::PI * r.length_squared());
+        let expected = pack(Vec3::splat(0.75 * (d + 0.5)));
+        assert_eq!(traced.frame.color[idx], expected);
+        // By hand: r = (-0.004, 0.296, -1.7), |r|² = 2.9776, cos = 0.9852,
+        // D = 1.1 * 0.9852 / (4π 2.9776) = 0.02896, R = 0.75 * 0.52896 = 0.3967 -> 101.
+        assert_eq!(traced.frame.rgb(250, 150), [101, 101, 101]);
+    }
+
+    #[test]
+    fn shadows_darken_the_floor_behind_a_block() {
+        // The line from the light (0, -0.5, -0.7) through the tall block's middle,
+        // (-0.33, 0.4, 0.27), meets the floor near (-0.55, 1, 0.92). A ray from just
+        // above that point straight down hits the floor; with shadows it gets only
+        // the indirect term, 0.5 times the floor's reflectance.
+        let scene = cornell_box();
+        let light = Light::handout();
+        let eye = Vec3::new(-0.55, 0.5, 0.92);
+        let opts = Options {
+            shadows: true,
+            ..Options::default()
+        };
+        let (c, hit) = trace(&scene, &light, eye, Vec3::Y, &opts);
+        assert!(matches!(hit, Some(0) | Some(1)), "{hit:?}");
+        assert!(
+            (c - Vec3::new(0.15, 0.75, 0.15) * 0.5).length() < 1e-6,
+            "{c}"
+        );
+        let (lit, _) = trace(&scene, &light, eye, Vec3::Y, &Options::default());
+        // Unshadowed, the floor there gets D = 1.1 cos / (4π r²) with r from
+        // (-0.55, 1, 0.92) to the light: r² = 0.3025 + 2.25 + 2.6244 = 5.18,
+        // cos = 1.5 / 2.276 = 0.659, D = 0.01113; green gains 0.75 D = 0.00835.
+        assert!((lit.y - c.y - 0.00835).abs() < 2e-4, "{lit} vs {c}");
+    }
+}
