@@ -32,6 +32,11 @@ pub struct Settings {
     pub light: Vec3,
     pub light_power: f32,
     pub indirect: f32,
+    /// Near clipping plane distance.
+    pub near: f32,
+    /// Clip at the near plane and the screen's guard band; false draws as the
+    /// handout does (`--no-clip`).
+    pub clip: bool,
 }
 
 impl Default for Settings {
@@ -48,6 +53,8 @@ impl Default for Settings {
             light: light.position,
             light_power: light.power.x,
             indirect: light.indirect.x,
+            near: crate::camera::DEFAULT_NEAR,
+            clip: true,
         }
     }
 }
@@ -61,6 +68,7 @@ impl Settings {
             focal: self.focal,
             width: self.width,
             height: self.height,
+            near: self.clip.then_some(self.near),
         }
     }
 

@@ -17,7 +17,13 @@ pub struct Camera {
     pub focal: f32,
     pub width: u32,
     pub height: u32,
+    /// The near clipping plane, `z = near` in camera space; `None` draws as the
+    /// handout does, without clipping (`--no-clip`).
+    pub near: Option<f32>,
 }
+
+/// The default near plane: 1 cm in a room 2 m wide.
+pub const DEFAULT_NEAR: f32 = 0.01;
 
 /// A vertex after the handout's `VertexShader`: its pixel and its inverse depth.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -28,9 +34,8 @@ pub struct Projected {
     pub zinv: f32,
 }
 
-/// Projected coordinates farther than this from the screen centre mark a vertex that
-/// the unclipped core cannot draw safely (it is behind, at or extremely near the
-/// camera's plane). Polygons with such a vertex are skipped.
+/// [`Projection::project`] refuses points projected farther than this from the
+/// screen centre, whose pixel would not fit an `i32` safely.
 pub const MAX_PIXEL_COORDINATE: f32 = (1 << 20) as f32;
 
 impl Camera {
@@ -43,6 +48,7 @@ impl Camera {
             focal: 500.0,
             width,
             height,
+            near: Some(DEFAULT_NEAR),
         }
     }
 
@@ -64,6 +70,18 @@ impl Camera {
             focal: self.focal,
             half_width: (self.width / 2) as i32,
             half_height: (self.height / 2) as i32,
+        }
+    }
+
+    /// The screen's pixels in the screen-centred coordinates of [`Projection::project_centred`]:
+    /// a point there truncates onto the screen only inside this rectangle.
+    pub fn screen_rect(&self) -> crate::clip::Rect {
+        let (hw, hh) = ((self.width / 2) as f32, (self.height / 2) as f32);
+        crate::clip::Rect {
+            left: -hw,
+            top: -hh,
+            right: self.width as f32 - hw,
+            bottom: self.height as f32 - hh,
         }
     }
 
@@ -93,24 +111,36 @@ impl Projection {
         Vec3::new(dot(p, right), dot(p, down), dot(p, forward))
     }
 
+    /// Eq. 3 and 4 before rounding and before the half size is added, with 1/z:
+    /// `(f X zinv, f Y zinv, zinv)` in f32, as the handout's `VertexShader` computes
+    /// them. `None` where 1/z is not finite (a point on the camera plane).
+    #[inline]
+    pub fn project_centred(&self, camera_space: Vec3) -> Option<(f32, f32, f32)> {
+        let zinv = 1.0 / camera_space.z;
+        let x = self.focal * camera_space.x * zinv;
+        let y = self.focal * camera_space.y * zinv;
+        (zinv.is_finite() && x.is_finite() && y.is_finite()).then_some((x, y, zinv))
+    }
+
+    /// The handout's rounding: truncate toward zero, then add the half size. The
+    /// caller keeps `x` and `y` within ±[`MAX_PIXEL_COORDINATE`].
+    #[inline]
+    pub fn to_pixel(&self, x: f32, y: f32) -> (i32, i32) {
+        (x as i32 + self.half_width, y as i32 + self.half_height)
+    }
+
     /// The handout's `VertexShader` projection, in f32:
     /// `zinv = 1/z; x = int(f * x * zinv) + W/2`, truncating toward zero before the
     /// half size is added. Returns `None` for a vertex that cannot be drawn without
     /// clipping: at or behind the camera plane, or projected absurdly far away.
-    #[inline]
     pub fn project(&self, camera_space: Vec3) -> Option<Projected> {
-        let zinv = 1.0 / camera_space.z;
-        let x = self.focal * camera_space.x * zinv;
-        let y = self.focal * camera_space.y * zinv;
-        let inside = |v: f32| v.abs() < MAX_PIXEL_COORDINATE; // false for NaN too
-        if !(zinv > 0.0 && zinv.is_finite() && inside(x) && inside(y)) {
+        let (x, y, zinv) = self.project_centred(camera_space)?;
+        let inside = |v: f32| v.abs() < MAX_PIXEL_COORDINATE;
+        if !(zinv > 0.0 && inside(x) && inside(y)) {
             return None;
         }
-        Some(Projected {
-            x: x as i32 + self.half_width,
-            y: y as i32 + self.half_height,
-            zinv,
-        })
+        let (x, y) = self.to_pixel(x, y);
+        Some(Projected { x, y, zinv })
     }
 }
 

@@ -11,10 +11,12 @@ use glam::Vec3;
 ///
 /// `Interpolate` needs just these: the difference of two values, that difference
 /// divided by the number of steps, and a running sum.
-pub trait Varying: Copy {
+pub trait Varying: Copy + Default {
     fn add(self, other: Self) -> Self;
     fn sub(self, other: Self) -> Self;
     fn div(self, d: f32) -> Self;
+    /// Used only by clipping, to place a new vertex part way along an edge.
+    fn scale(self, s: f32) -> Self;
 }
 
 /// Stages that carry nothing but the position (points, lines, flat fill).
@@ -22,6 +24,7 @@ impl Varying for () {
     fn add(self, _: ()) {}
     fn sub(self, _: ()) {}
     fn div(self, _: f32) {}
+    fn scale(self, _: f32) {}
 }
 
 impl Varying for f32 {
@@ -34,6 +37,9 @@ impl Varying for f32 {
     fn div(self, d: f32) -> f32 {
         self / d
     }
+    fn scale(self, s: f32) -> f32 {
+        self * s
+    }
 }
 
 impl Varying for Vec3 {
@@ -45,6 +51,9 @@ impl Varying for Vec3 {
     }
     fn div(self, d: f32) -> Vec3 {
         self / d
+    }
+    fn scale(self, s: f32) -> Vec3 {
+        self * s
     }
 }
 
@@ -59,10 +68,13 @@ impl<A: Varying, B: Varying> Varying for (A, B) {
     fn div(self, d: f32) -> Self {
         (self.0.div(d), self.1.div(d))
     }
+    fn scale(self, s: f32) -> Self {
+        (self.0.scale(s), self.1.scale(s))
+    }
 }
 
 /// The handout's `Pixel`: an integer image position and the data the stage carries.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Pixel<V> {
     pub x: i32,
     pub y: i32,

@@ -16,6 +16,7 @@
 
 pub mod app;
 pub mod camera;
+pub mod clip;
 pub mod controls;
 pub mod image_io;
 pub mod interpolate;

@@ -90,6 +90,13 @@ struct SceneArgs {
     #[arg(long, value_name = "N", default_value = "0.5", value_parser = parse::finite,
           allow_hyphen_values = true)]
     indirect: f32,
+    /// Near clipping plane: geometry closer to the camera than Z is cut away.
+    #[arg(long, value_name = "Z", default_value = "0.01", value_parser = parse::positive)]
+    near: f32,
+    /// Draw as the handout does, without clipping: a triangle with a corner behind
+    /// the camera is projected through it and drawn wrong (but never out of bounds).
+    #[arg(long)]
+    no_clip: bool,
 }
 
 impl SceneArgs {
@@ -104,6 +111,8 @@ impl SceneArgs {
             light: self.light,
             light_power: self.light_power,
             indirect: self.indirect,
+            near: self.near,
+            clip: !self.no_clip,
         }
     }
 }

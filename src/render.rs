@@ -3,9 +3,13 @@
 //! (for stages that have one) and the pixel shader into the frame.
 
 use crate::camera::{Camera, Projection};
+use crate::clip::{
+    clip_near, clip_rect, clip_segment_near, clip_segment_rect, CameraVertex, Polygon, Rect,
+    ScreenVertex,
+};
 use crate::interpolate::Pixel;
 use crate::light::Light;
-use crate::polygon::{compute_polygon_rows, draw_polygon_edges, draw_polygon_rows, Clip, Rows};
+use crate::polygon::{compute_polygon_rows, draw_line, draw_polygon_rows, Clip, Rows};
 use crate::scene::Triangle;
 use crate::stage::{
     Affine, Correction, Depth, Filled, Perspective, PixelLight, Points, Primitive, Stage,
@@ -73,21 +77,42 @@ pub fn pack(c: Vec3) -> u32 {
     (q(c.x) << 16) | (q(c.y) << 8) | q(c.z)
 }
 
-/// The handout's `VertexShader`: eq. 8, the truncating projection, and the stage's
-/// own per-vertex work. `None` for a vertex the unclipped core cannot draw.
+/// The handout's `VertexShader` after any near-plane clip: eq. 3 and 4 (before
+/// truncation) and the stage's screen-space data for one camera-space vertex.
+/// `None` if the vertex lies on the camera plane and cannot be projected.
 #[inline]
 pub fn vertex_shader<S: Stage>(
     stage: &S,
     projection: &Projection,
-    world: Vec3,
-    tri: &Triangle,
-) -> Option<Pixel<S::Varying>> {
-    let p = projection.project(projection.to_camera(world))?;
-    Some(Pixel {
-        x: p.x,
-        y: p.y,
-        v: stage.vertex_shader(world, p.zinv, tri),
+    c: CameraVertex<S::Attributes>,
+) -> Option<ScreenVertex<S::Varying>> {
+    let (x, y, zinv) = projection.project_centred(c.pos)?;
+    Some(ScreenVertex {
+        x,
+        y,
+        v: stage.to_varying(c.a, zinv),
     })
+}
+
+/// How far the guard band reaches beyond each side of the screen, in screen
+/// sizes: primitives are cut there, so none costs more than a few screens.
+pub const GUARD_BAND: f32 = 1.0;
+
+/// A projected vertex on its pixel, truncated as the handout does.
+#[inline]
+fn to_pixel<V>(projection: &Projection, s: ScreenVertex<V>) -> Pixel<V> {
+    let (x, y) = projection.to_pixel(s.x, s.y);
+    Pixel { x, y, v: s.v }
+}
+
+/// True if every corner lies beyond one side of the screen by more than the
+/// pixel or two that rounding and running sums can move a pixel.
+fn off_screen<V>(corners: &[ScreenVertex<V>], screen: &Rect) -> bool {
+    let m = 2.0;
+    corners.iter().all(|v| v.x < screen.left - m)
+        || corners.iter().all(|v| v.x > screen.right + m)
+        || corners.iter().all(|v| v.y < screen.top - m)
+        || corners.iter().all(|v| v.y > screen.bottom + m)
 }
 
 /// The handout's `PixelShader`: the depth test (if the stage has a depth buffer),
@@ -121,36 +146,91 @@ impl<S: Stage> Rasterizer<S> {
     }
 
     /// The handout's `Draw`: clear the frame, then draw every triangle of `scene`.
+    ///
+    /// With `camera.near` set, each primitive is clipped at the near plane before
+    /// projection and at a guard band around the screen after it (see `clip`).
+    /// A triangle in full view goes through neither cut, so its pixels are
+    /// exactly the handout's.
     pub fn draw(&mut self, scene: &[Triangle], camera: &Camera, frame: &mut Frame) {
         frame.clear(camera.width, camera.height, S::DEPTH_BUFFER);
         let projection = camera.projection();
         let clip = Clip::screen(camera.width, camera.height);
+        let screen = camera.screen_rect();
+        let g = camera.width.max(camera.height) as f32 * GUARD_BAND;
+        let band = Rect {
+            left: screen.left - g,
+            top: screen.top - g,
+            right: screen.right + g,
+            bottom: screen.bottom + g,
+        };
         let stage = &self.stage;
+        let project = |c| vertex_shader(stage, &projection, c);
         for tri in scene {
-            let corners = tri.vertices();
-            let pixel = |i: usize| vertex_shader(stage, &projection, corners[i], tri);
+            let corners = tri.vertices().map(|w| CameraVertex {
+                pos: projection.to_camera(w),
+                a: stage.vertex_shader(w, tri),
+            });
             match S::PRIMITIVE {
                 Primitive::Points => {
-                    // Each vertex on its own: one behind the camera does not hide the others.
-                    for p in (0..3).filter_map(pixel) {
+                    for c in corners {
+                        if camera.near.is_some_and(|n| c.pos.z < n || c.pos.z.is_nan()) {
+                            continue;
+                        }
+                        let Some(s) = project(c).filter(|s| band.contains(s)) else {
+                            continue;
+                        };
+                        let p = to_pixel(&projection, s);
                         if clip.x.contains(&p.x) && clip.y.contains(&p.y) {
                             pixel_shader(stage, frame, p, tri);
                         }
                     }
                 }
-                Primitive::Lines | Primitive::Polygons => {
-                    let (Some(a), Some(b), Some(c)) = (pixel(0), pixel(1), pixel(2)) else {
-                        continue; // needs clipping, which the handout leaves out
-                    };
-                    let polygon = [a, b, c];
-                    if S::PRIMITIVE == Primitive::Lines {
-                        draw_polygon_edges(&polygon, &clip, |p| pixel_shader(stage, frame, p, tri));
-                    } else {
-                        compute_polygon_rows(&polygon, &clip, &mut self.rows);
-                        draw_polygon_rows(&self.rows, &clip, |p| {
-                            pixel_shader(stage, frame, p, tri)
-                        });
+                Primitive::Lines => {
+                    for i in 0..3 {
+                        let (p, q) = (corners[i], corners[(i + 1) % 3]);
+                        let near_cut = match camera.near {
+                            Some(n) => clip_segment_near(p, q, n),
+                            None => Some((p, q)),
+                        };
+                        let Some((p, q)) = near_cut else { continue };
+                        let (Some(p), Some(q)) = (project(p), project(q)) else {
+                            continue;
+                        };
+                        let banded = if band.contains(&p) && band.contains(&q) {
+                            Some((p, q))
+                        } else {
+                            clip_segment_rect(p, q, &band)
+                        };
+                        let Some((p, q)) = banded else { continue };
+                        let (p, q) = (to_pixel(&projection, p), to_pixel(&projection, q));
+                        draw_line(p, q, &clip, |px| pixel_shader(stage, frame, px, tri));
                     }
+                }
+                Primitive::Polygons => {
+                    let mut polygon = Polygon::from_slice(&corners);
+                    if let Some(n) = camera.near {
+                        polygon = clip_near(&polygon, n);
+                    }
+                    let mut on_screen = Polygon::default();
+                    for &c in polygon.as_slice() {
+                        match project(c) {
+                            Some(s) => on_screen.push(s),
+                            None => break,
+                        }
+                    }
+                    if on_screen.len() != polygon.len() || off_screen(on_screen.as_slice(), &screen)
+                    {
+                        continue;
+                    }
+                    if !on_screen.as_slice().iter().all(|s| band.contains(s)) {
+                        on_screen = clip_rect(&on_screen, &band);
+                    }
+                    let mut pixels = Polygon::default();
+                    for &s in on_screen.as_slice() {
+                        pixels.push(to_pixel(&projection, s));
+                    }
+                    compute_polygon_rows(pixels.as_slice(), &clip, &mut self.rows);
+                    draw_polygon_rows(&self.rows, &clip, |p| pixel_shader(stage, frame, p, tri));
                 }
             }
         }

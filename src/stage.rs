@@ -37,9 +37,17 @@ pub trait Stage {
     /// Whether pixels go through the depth test of section 5.
     const DEPTH_BUFFER: bool;
 
-    /// The stage's part of the handout's `VertexShader`: what a vertex at `world`
-    /// (with inverse camera depth `zinv`) of triangle `tri` hands to interpolation.
-    fn vertex_shader(&self, world: Vec3, zinv: f32, tri: &Triangle) -> Self::Varying;
+    /// Per-vertex values that are linear over the triangle in 3D (a position, eq.
+    /// 11's light at the vertex); what the near-plane clip interpolates.
+    type Attributes: Varying;
+
+    /// The stage's part of the handout's `VertexShader`: its per-vertex work for a
+    /// vertex at `world` of triangle `tri`.
+    fn vertex_shader(&self, world: Vec3, tri: &Triangle) -> Self::Attributes;
+
+    /// What is interpolated on the screen for a vertex with these attributes and
+    /// inverse camera depth `zinv` (for example q/z and 1/z).
+    fn to_varying(&self, a: Self::Attributes, zinv: f32) -> Self::Varying;
 
     /// 1/z at a pixel, for the depth test. Only called when `DEPTH_BUFFER`.
     fn zinv(_v: &Self::Varying) -> f32 {
@@ -69,10 +77,13 @@ macro_rules! unlit_stage {
     ($stage:ty, $primitive:expr, $color:expr) => {
         impl Stage for $stage {
             type Varying = ();
+            type Attributes = ();
             const PRIMITIVE: Primitive = $primitive;
             const DEPTH_BUFFER: bool = false;
 
-            fn vertex_shader(&self, _: Vec3, _: f32, _: &Triangle) {}
+            fn vertex_shader(&self, _: Vec3, _: &Triangle) {}
+
+            fn to_varying(&self, _: (), _: f32) {}
 
             fn pixel_shader(&self, _: &(), tri: &Triangle) -> Vec3 {
                 let color: fn(&Triangle) -> Vec3 = $color;
@@ -164,10 +175,13 @@ impl<C: Correction> Depth<C> {
 
 impl<C: Correction> Stage for Depth<C> {
     type Varying = f32;
+    type Attributes = ();
     const PRIMITIVE: Primitive = Primitive::Polygons;
     const DEPTH_BUFFER: bool = true;
 
-    fn vertex_shader(&self, _: Vec3, zinv: f32, _: &Triangle) -> f32 {
+    fn vertex_shader(&self, _: Vec3, _: &Triangle) {}
+
+    fn to_varying(&self, _: (), zinv: f32) -> f32 {
         C::depth(zinv)
     }
 
@@ -201,11 +215,16 @@ impl<C: Correction> VertexLight<C> {
 impl<C: Correction> Stage for VertexLight<C> {
     /// (depth, reflected light R of eq. 11, encoded for interpolation)
     type Varying = (f32, Vec3);
+    /// R of eq. 11 at the vertex.
+    type Attributes = Vec3;
     const PRIMITIVE: Primitive = Primitive::Polygons;
     const DEPTH_BUFFER: bool = true;
 
-    fn vertex_shader(&self, world: Vec3, zinv: f32, tri: &Triangle) -> (f32, Vec3) {
-        let reflected = self.light.reflected(world, tri.normal, tri.color);
+    fn vertex_shader(&self, world: Vec3, tri: &Triangle) -> Vec3 {
+        self.light.reflected(world, tri.normal, tri.color)
+    }
+
+    fn to_varying(&self, reflected: Vec3, zinv: f32) -> (f32, Vec3) {
         (C::depth(zinv), C::encode(reflected, zinv))
     }
 
@@ -245,10 +264,16 @@ impl<C: Correction> PixelLight<C> {
 impl<C: Correction> Stage for PixelLight<C> {
     /// (depth, world position, encoded for interpolation)
     type Varying = (f32, Vec3);
+    /// The world position.
+    type Attributes = Vec3;
     const PRIMITIVE: Primitive = Primitive::Polygons;
     const DEPTH_BUFFER: bool = true;
 
-    fn vertex_shader(&self, world: Vec3, zinv: f32, _: &Triangle) -> (f32, Vec3) {
+    fn vertex_shader(&self, world: Vec3, _: &Triangle) -> Vec3 {
+        world
+    }
+
+    fn to_varying(&self, world: Vec3, zinv: f32) -> (f32, Vec3) {
         (C::depth(zinv), C::encode(world, zinv))
     }
 

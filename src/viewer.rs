@@ -69,7 +69,15 @@ pub fn command_for(view: View, s: &Settings) -> String {
         v(s.light),
         s.light_power,
         s.indirect
-    )
+    ) + &if s.clip {
+        if s.near == crate::camera::DEFAULT_NEAR {
+            String::new()
+        } else {
+            format!(" --near {}", s.near)
+        }
+    } else {
+        " --no-clip".to_string()
+    }
 }
 
 fn median(samples: impl Iterator<Item = Duration>) -> Duration {
