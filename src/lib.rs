@@ -31,6 +31,7 @@ pub mod render;
 pub mod report;
 pub mod scene;
 pub mod stage;
+pub mod stress;
 pub mod timing;
 pub mod viewer;
 

@@ -29,7 +29,9 @@ impl Light {
     #[inline]
     pub fn direct(&self, position: Vec3, normal: Vec3) -> Vec3 {
         let r = self.position - position;
-        let r2 = r.x * r.x + r.y * r.y + r.z * r.z;
+        // A floor under |r|² keeps a light on the surface itself finite (0 / 0
+        // would be NaN); no surface in a scene of ordinary size comes that close.
+        let r2 = (r.x * r.x + r.y * r.y + r.z * r.z).max(1e-12);
         // r̂·n̂ / (4π r²) as one division: (r·n) / (4π r² |r|).
         let r_dot_n = r.x * normal.x + r.y * normal.y + r.z * normal.z;
         self.power * (r_dot_n.max(0.0) / (4.0 * PI * r2 * r2.sqrt()))
@@ -63,6 +65,12 @@ mod tests {
         assert!(d.abs_diff_eq(Vec3::splat(0.125), 1e-6), "{d}");
         // Behind the surface: no direct light.
         assert_eq!(light.direct(Vec3::ZERO, Vec3::Y), Vec3::ZERO);
+        // The light on the surface point itself: finite (no direction, no light).
+        let on = light.direct(light.position, Vec3::Y);
+        assert_eq!(on, Vec3::ZERO);
+        // Just above it: very bright, still finite.
+        let near = light.direct(light.position + Vec3::Y * 1e-3, -Vec3::Y);
+        assert!(near.is_finite() && near.x > 1e5, "{near}");
     }
 
     #[test]

@@ -43,6 +43,11 @@ enum Command {
     /// Measures every stage against the ray tracer: error and draw time, as
     /// report.md, report.csv and error-vs-time.png.
     Report(ReportArgs),
+    /// Runs the catalogue of hard cases and prints a table: NaN and infinity
+    /// counts, panics, error against the ray tracer with its bound, draw time.
+    ///
+    /// Exits with 1 if any case fails. docs/stability.md explains each case.
+    Stress(StressArgs),
     /// Opens a window on a stage; walk with the arrows, move the light with a/w/s/d.
     ///
     /// Keys: up/down move, left/right turn, pageup/pagedown (or r/f) look up/down, left
@@ -64,7 +69,8 @@ struct SceneArgs {
     #[arg(long, value_name = "WxH", default_value = "500x500", value_parser = parse::size)]
     size: (u32, u32),
     /// Focal length f in pixels (eq. 1 to 4).
-    #[arg(long, value_name = "F", default_value = "500", value_parser = parse::positive)]
+    #[arg(long, value_name = "F", default_value = "500", value_parser = parse::positive,
+          allow_hyphen_values = true)]
     focal: f32,
     /// Camera position C (eq. 5) in world space; y points down.
     #[arg(long, value_name = "X,Y,Z", default_value = "0,0,-3.001",
@@ -91,7 +97,8 @@ struct SceneArgs {
           allow_hyphen_values = true)]
     indirect: f32,
     /// Near clipping plane: geometry closer to the camera than Z is cut away.
-    #[arg(long, value_name = "Z", default_value = "0.01", value_parser = parse::positive)]
+    #[arg(long, value_name = "Z", default_value = "0.01", value_parser = parse::positive,
+          allow_hyphen_values = true)]
     near: f32,
     /// Draw as the handout does, without clipping: a triangle with a corner behind
     /// the camera is projected through it and drawn wrong (but never out of bounds).
@@ -174,6 +181,13 @@ struct ReportArgs {
 }
 
 #[derive(Args, Debug)]
+struct StressArgs {
+    /// Leave out the 16000 x 16000 case (the slowest) and time one draw per case.
+    #[arg(long)]
+    quick: bool,
+}
+
+#[derive(Args, Debug)]
 struct ViewArgs {
     /// The stage to show first: points, wireframe, filled, depth, vertex-light, pixel-light.
     #[arg(value_name = "STAGE", default_value = "pixel-light", value_parser = parse::stage)]
@@ -244,6 +258,7 @@ fn run(cli: Cli) -> Result<(), String> {
                 },
                 shadows: a.shadows,
                 samples: a.samples,
+                near: None,
             };
             let out = a
                 .render
@@ -268,6 +283,39 @@ fn run(cli: Cli) -> Result<(), String> {
                 .map_err(|e| e.to_string())?;
             for path in written {
                 eprintln!("wrote {}", path.display());
+            }
+            Ok(())
+        }
+        Command::Stress(a) => {
+            let cases = rasterlab::stress::catalogue(a.quick);
+            let runs = if a.quick { 1 } else { 3 };
+            let mut outcomes = Vec::new();
+            for (i, case) in cases.iter().enumerate() {
+                let o = rasterlab::stress::run(case, runs);
+                eprintln!(
+                    "[{:>2}/{}] {} ({}): {}",
+                    i + 1,
+                    cases.len(),
+                    o.name,
+                    o.stage,
+                    if o.pass { "ok" } else { "FAIL" }
+                );
+                outcomes.push(o);
+            }
+            println!("{}", rasterlab::stress::table(&outcomes));
+            println!("Long spans, largest distance from the exact position:\n");
+            println!(
+                "{}",
+                rasterlab::stress::drift_table(&[
+                    1_000, 4_096, 5_000, 32_000, 100_000, 1_000_000, 10_000_000
+                ])
+            );
+            let failed = outcomes.iter().filter(|o| !o.pass).count();
+            if failed > 0 {
+                return Err(format!(
+                    "{failed} of {} stress cases failed",
+                    outcomes.len()
+                ));
             }
             Ok(())
         }

@@ -6,7 +6,7 @@
 //! anywhere, which is undefined in C++; here a pixel outside the screen is skipped
 //! and rows outside it are never stored.
 
-use crate::interpolate::{line_pixels, Pixel, Steps, Varying};
+use crate::interpolate::{line_pixels, Pixel, Steps, Varying, RUNNING_SUM_LIMIT};
 use std::ops::Range;
 
 /// The pixels a primitive may touch: `x` in `0..width`, `y` in `0..height`.
@@ -148,17 +148,32 @@ pub fn compute_polygon_rows<V: Varying>(vertices: &[Pixel<V>], clip: &Clip, rows
 /// Along a row x steps by `(n - 1) / (n - 1)`, exactly 1, so the running sum of x
 /// holds whole numbers and only the varying needs one; the result is bit for bit
 /// the handout's `Interpolate` over the row. Pixels left of the screen still add
-/// their step, so the sum is the same as if they were drawn.
+/// their step, so the sum is the same as if they were drawn. Rows longer than
+/// `RUNNING_SUM_LIMIT` compute each value directly (see `interpolate`).
 pub fn draw_polygon_rows<V: Varying>(rows: &Rows<V>, clip: &Clip, mut shade: impl FnMut(Pixel<V>)) {
     for (l, r) in rows.left.iter().zip(&rows.right) {
         let n = r.x as i64 - l.x as i64 + 1;
         if n <= 0 {
             continue;
         }
-        let step = r.v.sub(l.v).div((n - 1).max(1) as f32);
-        let mut v = l.v;
+        let span = r.v.sub(l.v);
+        let d = (n - 1).max(1) as f32;
         let first = l.x.max(clip.x.start);
         let last = r.x.min(clip.x.end - 1);
+        if n as usize > RUNNING_SUM_LIMIT {
+            // Too long for a running sum to stay accurate: each value directly.
+            for x in first..=last {
+                let t = (x as i64 - l.x as i64) as f32 / d;
+                shade(Pixel {
+                    x,
+                    y: l.y,
+                    v: l.v.add(span.scale(t)),
+                });
+            }
+            continue;
+        }
+        let step = span.div(d);
+        let mut v = l.v;
         for _ in l.x..first {
             v = v.add(step);
         }

@@ -18,13 +18,16 @@ pub enum Shading {
     Lit,
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Options {
     pub shading: Shading,
     /// Lab 2's shadow ray: a hit that cannot see the light gets only indirect light.
     pub shadows: bool,
     /// Rays per pixel along each axis (N x N in all), spread evenly over the pixel.
     pub samples: u32,
+    /// Ignore primary hits nearer than this camera-space depth, like the
+    /// rasterizer's near plane.
+    pub near: Option<f32>,
 }
 
 impl Default for Options {
@@ -33,6 +36,7 @@ impl Default for Options {
             shading: Shading::Lit,
             shadows: false,
             samples: 1,
+            near: None,
         }
     }
 }
@@ -125,9 +129,13 @@ pub fn raytrace(scene: &[Triangle], camera: &Camera, light: &Light, options: &Op
     let mut hit = vec![None; (w * h) as usize];
     for y in 0..h {
         for x in 0..w {
+            // The direction's forward part is f, so a hit at distance t along it
+            // lies at camera depth t f; starting the ray at depth `near` cuts
+            // what the near plane cuts.
+            let start = options.near.map_or(0.0, |n| n / camera.focal);
             let ray = |sx: f32, sy: f32| {
                 let dir = right * (sx - half_w) + down * (sy - half_h) + forward * camera.focal;
-                trace(scene, light, camera.position, dir, options)
+                trace(scene, light, camera.position + dir * start, dir, options)
             };
             let (x, y) = (x as f32, y as f32);
             // The triangle under the pixel's centre, for telling edges from interiors.

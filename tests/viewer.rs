@@ -153,3 +153,33 @@ fn seven_and_p_switch_interpolation() {
         "{args:?}"
     );
 }
+
+#[test]
+#[ignore = "needs Xvfb; .ci/run runs it with --ignored"]
+fn walking_through_the_back_wall() {
+    // 250 frames of 1/60 s at 1 unit/s: 4.2 units forward, from z = -3.001 through
+    // the back wall at z = 1, then turn to look back at it.
+    let dir = temp_dir("viewer-walk");
+    let shot = dir.join("shot.png");
+    let args = view(
+        &dir,
+        &[
+            "--frames",
+            "300",
+            "--fps",
+            "0",
+            "--keys",
+            "up*250,left*45",
+            "--screenshot",
+            shot.to_str().unwrap(),
+        ],
+    );
+    let reference = dir.join("reference.png");
+    assert!(Command::new(bin())
+        .args(&args)
+        .args(["-o", reference.to_str().unwrap()])
+        .status()
+        .unwrap()
+        .success());
+    assert_same_image(&shot, &reference);
+}
