@@ -48,17 +48,16 @@ pub struct Traced {
     pub hit: Vec<Option<u32>>,
 }
 
-/// Distance along `dir` to `tri` (Möller–Trumbore), if the ray hits it in front of
-/// `origin`. Hits closer than `EPSILON` are ignored so a shadow ray does not hit
-/// the surface it starts on.
-pub fn intersect(origin: Vec3, dir: Vec3, tri: &Triangle) -> Option<f32> {
-    const EPSILON: f32 = 1e-5;
+/// Distance along `dir` (in units of `dir`'s length) to `tri` (Möller–Trumbore),
+/// if the ray hits it farther than `t_min`. Primary rays take any hit in front;
+/// shadow rays skip the first 1e-4 of the way so they do not hit their own surface.
+pub fn intersect(origin: Vec3, dir: Vec3, tri: &Triangle, t_min: f32) -> Option<f32> {
     let e1 = tri.v1 - tri.v0;
     let e2 = tri.v2 - tri.v0;
     let p = dir.cross(e2);
     let det = e1.dot(p);
-    if det.abs() < 1e-12 {
-        return None; // parallel to the triangle's plane
+    if det == 0.0 || !det.is_finite() {
+        return None; // parallel to the triangle's plane, or degenerate
     }
     let inv = 1.0 / det;
     let s = origin - tri.v0;
@@ -72,14 +71,14 @@ pub fn intersect(origin: Vec3, dir: Vec3, tri: &Triangle) -> Option<f32> {
         return None;
     }
     let t = e2.dot(q) * inv;
-    (t > EPSILON).then_some(t)
+    (t > t_min).then_some(t)
 }
 
-/// The nearest hit along a ray: (distance, triangle index).
-pub fn nearest(scene: &[Triangle], origin: Vec3, dir: Vec3) -> Option<(f32, usize)> {
+/// The nearest hit along a ray beyond `t_min`: (distance, triangle index).
+pub fn nearest(scene: &[Triangle], origin: Vec3, dir: Vec3, t_min: f32) -> Option<(f32, usize)> {
     let mut best: Option<(f32, usize)> = None;
     for (i, tri) in scene.iter().enumerate() {
-        if let Some(t) = intersect(origin, dir, tri) {
+        if let Some(t) = intersect(origin, dir, tri, t_min) {
             if best.is_none_or(|(b, _)| t < b) {
                 best = Some((t, i));
             }
@@ -96,7 +95,7 @@ pub fn trace(
     dir: Vec3,
     options: &Options,
 ) -> (Vec3, Option<usize>) {
-    let Some((t, i)) = nearest(scene, origin, dir) else {
+    let Some((t, i)) = nearest(scene, origin, dir, 0.0) else {
         return (Vec3::ZERO, None);
     };
     let tri = &scene[i];
@@ -105,8 +104,8 @@ pub fn trace(
         Shading::Lit => {
             let hit = origin + dir * t;
             let to_light = light.position - hit;
-            let blocked =
-                options.shadows && nearest(scene, hit, to_light).is_some_and(|(s, _)| s < 1.0);
+            let blocked = options.shadows
+                && nearest(scene, hit, to_light, 1e-4).is_some_and(|(s, _)| s < 1.0);
             if blocked {
                 tri.color * light.indirect
             } else {
@@ -173,16 +172,21 @@ mod tests {
             Vec3::new(0.0, 1.0, 2.0),
             Vec3::ONE,
         );
-        assert_eq!(intersect(Vec3::ZERO, Vec3::Z, &tri), Some(2.0));
+        assert_eq!(intersect(Vec3::ZERO, Vec3::Z, &tri, 0.0), Some(2.0));
         assert_eq!(
-            intersect(Vec3::ZERO, -Vec3::Z, &tri),
+            intersect(Vec3::ZERO, -Vec3::Z, &tri, 0.0),
             None,
             "behind the origin"
         );
         assert_eq!(
-            intersect(Vec3::new(5.0, 0.0, 0.0), Vec3::Z, &tri),
+            intersect(Vec3::new(5.0, 0.0, 0.0), Vec3::Z, &tri, 0.0),
             None,
             "beside it"
+        );
+        assert_eq!(
+            intersect(Vec3::ZERO, Vec3::Z, &tri, 2.5),
+            None,
+            "nearer than t_min"
         );
     }
 

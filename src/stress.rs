@@ -124,6 +124,8 @@ pub struct Outcome {
     pub panicked: bool,
     /// The measured error, for cases with a reference.
     pub error: Option<f64>,
+    /// Pixels the error was measured over.
+    pub compared: usize,
     pub check: Check,
     pub ms: f64,
     pub pass: bool,
@@ -500,6 +502,7 @@ pub fn run(case: &Case, runs: usize) -> Outcome {
         non_finite: 0,
         panicked: drawn.is_err(),
         error: None,
+        compared: 0,
         check: case.check,
         ms: 0.0,
         pass: false,
@@ -518,21 +521,34 @@ pub fn run(case: &Case, runs: usize) -> Outcome {
         };
         raytrace(&case.scene, &case.camera, &case.light, &options)
     };
+    // Interior pixels of the reference; where the reference shows no surface at
+    // all (everything clipped or out of view), every pixel, which must then be
+    // black in both.
+    let compare = |shading| {
+        let r = reference(shading);
+        let mut mask = interior_mask(&case.scene, &r.hit, w, h, INTERIOR_MARGIN);
+        if r.hit.iter().all(Option::is_none) {
+            mask.fill(true);
+        }
+        let compared = mask.iter().filter(|&&m| m).count();
+        (r, mask, compared)
+    };
     outcome.error = match case.check {
         Check::Rmse(_) => {
-            let r = reference(Shading::Lit);
-            let mask = interior_mask(&case.scene, &r.hit, w, h, INTERIOR_MARGIN);
+            let (r, mask, n) = compare(Shading::Lit);
+            outcome.compared = n;
             Some(image_error(&frame, &r.frame, Some(&mask)).rmse)
         }
         Check::Wrong(_) | Check::Measure => {
-            let r = reference(Shading::Flat);
-            let mask = interior_mask(&case.scene, &r.hit, w, h, INTERIOR_MARGIN);
+            let (r, mask, n) = compare(Shading::Flat);
+            outcome.compared = n;
             Some(differing_fraction(&frame, &r.frame, Some(&mask)))
         }
         Check::Safety => None,
     };
     let within = match (case.check, outcome.error) {
-        (Check::Rmse(b), Some(e)) | (Check::Wrong(b), Some(e)) => e <= b,
+        // A comparison over no pixels would prove nothing.
+        (Check::Rmse(b), Some(e)) | (Check::Wrong(b), Some(e)) => e <= b && outcome.compared > 0,
         _ => true,
     };
     outcome.pass = !outcome.panicked && bad == 0 && within;
@@ -589,7 +605,7 @@ fn check_text(c: Check) -> String {
 /// The table `rasterlab stress` prints.
 pub fn table(outcomes: &[Outcome]) -> String {
     let mut out = String::from(
-        "| case | stage | NaN/inf | panic | error vs ray tracer | bound | ms | result |\n|---|---|---|---|---|---|---|---|\n",
+        "| case | stage | NaN/inf | panic | error vs ray tracer | pixels compared | bound | ms | result |\n|---|---|---|---|---|---|---|---|---|\n",
     );
     for o in outcomes {
         let error = match (o.check, o.error) {
@@ -599,12 +615,17 @@ pub fn table(outcomes: &[Outcome]) -> String {
         };
         let _ = writeln!(
             out,
-            "| {} | {} | {} | {} | {} | {} | {:.2} | {} |",
+            "| {} | {} | {} | {} | {} | {} | {} | {:.2} | {} |",
             o.name,
             o.stage,
             o.non_finite,
             if o.panicked { "yes" } else { "no" },
             error,
+            if o.error.is_some() {
+                o.compared.to_string()
+            } else {
+                "-".into()
+            },
             check_text(o.check),
             o.ms,
             if o.pass { "ok" } else { "FAIL" }

@@ -29,10 +29,16 @@ fn every_stress_case_passes() {
     assert!(cases.len() >= 50, "{table}");
     for row in &cases {
         let cells: Vec<&str> = row.split('|').map(str::trim).collect();
-        // | case | stage | NaN/inf | panic | error | bound | ms | result |
+        // | case | stage | NaN/inf | panic | error | compared | bound | ms | result |
         assert_eq!(cells[3], "0", "non-finite values: {row}");
         assert_eq!(cells[4], "no", "panicked: {row}");
-        assert_eq!(cells[8], "ok", "{row}");
+        if cells[5] != "-" {
+            assert!(
+                cells[6].parse::<usize>().unwrap() > 0,
+                "compared no pixels: {row}"
+            );
+        }
+        assert_eq!(cells[9], "ok", "{row}");
     }
     // The long-span table: the core's drift stays under 0.03 px at every length,
     // while the running sum alone passes a pixel by 32000 steps.
