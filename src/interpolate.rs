@@ -81,6 +81,12 @@ pub struct Pixel<V> {
     pub v: V,
 }
 
+impl<V> Pixel<V> {
+    pub const fn new(x: i32, y: i32, v: V) -> Self {
+        Pixel { x, y, v }
+    }
+}
+
 impl Pixel<()> {
     /// A bare position, the handout's `ivec2`.
     pub fn at(x: i32, y: i32) -> Self {
@@ -201,17 +207,9 @@ mod tests {
     fn the_running_sum_is_kept() {
         // Ten steps of 0.1 in f32 add up to 1.0000001, not 1: the handout's form
         // accumulates, and the last value shows it.
-        let a = Pixel {
-            x: 0,
-            y: 0,
-            v: 0.0f32,
-        };
-        let b = Pixel {
-            x: 0,
-            y: 0,
-            v: 1.0f32,
-        };
-        let v: Vec<f32> = Steps::new(a, b, 11).map(|p| p.v).collect();
+        let v: Vec<f32> = Steps::new(Pixel::new(0, 0, 0.0f32), Pixel::new(0, 0, 1.0f32), 11)
+            .map(|p| p.v)
+            .collect();
         let mut sum = 0.0f32;
         let expected: Vec<f32> = (0..11)
             .map(|_| {

@@ -1,6 +1,5 @@
-//! Lines and filled polygons from projected vertices: the handout's `DrawLineSDL`,
-//! `DrawPolygonEdges` (section 3), `ComputePolygonRows` and `DrawPolygonRows`
-//! (section 4).
+//! Lines and filled polygons from projected vertices: the handout's `DrawLineSDL`
+//! (section 3), `ComputePolygonRows` and `DrawPolygonRows` (section 4).
 //!
 //! Every function takes the screen as a clip rectangle: the handout writes pixels
 //! anywhere, which is undefined in C++; here a pixel outside the screen is skipped
@@ -49,18 +48,6 @@ pub fn draw_line<V: Varying>(
         if clip.contains(&p) {
             plot(p);
         }
-    }
-}
-
-/// `DrawPolygonEdges`: a line from vertex i to vertex (i + 1) mod n, for every i.
-pub fn draw_polygon_edges<V: Varying>(
-    vertices: &[Pixel<V>],
-    clip: &Clip,
-    mut plot: impl FnMut(Pixel<V>),
-) {
-    let n = vertices.len();
-    for i in 0..n {
-        draw_line(vertices[i], vertices[(i + 1) % n], clip, &mut plot);
     }
 }
 

@@ -380,46 +380,27 @@ pub fn catalogue(quick: bool) -> Vec<Case> {
         power: Vec3::splat(power),
         ..light
     };
-    add(
-        "light on the left wall",
-        &box_,
-        Camera::handout(500, 500),
-        at(Vec3::new(-1.0, 0.0, 0.0), 1.1),
-        pixel,
-        Check::Rmse(LIT_BOUND),
-    );
-    add(
-        "light on a vertex (back top corner)",
-        &box_,
-        Camera::handout(500, 500),
-        at(Vec3::new(1.0, -1.0, 1.0), 1.1),
-        pixel,
-        Check::Rmse(LIT_BOUND),
-    );
-    add(
-        "light behind the back wall",
-        &box_,
-        Camera::handout(500, 500),
-        at(Vec3::new(0.0, 0.0, 1.5), 1.1),
-        pixel,
-        Check::Rmse(LIT_BOUND),
-    );
-    add(
-        "zero light power",
-        &box_,
-        Camera::handout(500, 500),
-        at(light.position, 0.0),
-        pixel,
-        Check::Rmse(LIT_BOUND),
-    );
-    add(
-        "negative light power",
-        &box_,
-        Camera::handout(500, 500),
-        at(light.position, -1.1),
-        pixel,
-        Check::Rmse(LIT_BOUND),
-    );
+    let base = Camera::handout(500, 500);
+    for (name, position, power) in [
+        ("light on the left wall", Vec3::new(-1.0, 0.0, 0.0), 1.1),
+        (
+            "light on a vertex (back top corner)",
+            Vec3::new(1.0, -1.0, 1.0),
+            1.1,
+        ),
+        ("light behind the back wall", Vec3::new(0.0, 0.0, 1.5), 1.1),
+        ("zero light power", light.position, 0.0),
+        ("negative light power", light.position, -1.1),
+    ] {
+        add(
+            name,
+            &box_,
+            base,
+            at(position, power),
+            pixel,
+            Check::Rmse(LIT_BOUND),
+        );
+    }
     add(
         "light on a vertex, per vertex",
         &box_,
@@ -577,17 +558,7 @@ pub fn interpolation_drift(n: usize) -> (f64, f64) {
 /// The largest y error of [`Steps`] itself over such a span, in pixels.
 pub fn steps_drift(n: usize) -> f64 {
     let rise = (n / 3) as f32;
-    let a = Pixel {
-        x: 0,
-        y: 0,
-        v: 0.0f32,
-    };
-    let b = Pixel {
-        x: 0,
-        y: 0,
-        v: rise,
-    };
-    Steps::new(a, b, n)
+    Steps::new(Pixel::new(0, 0, 0.0f32), Pixel::new(0, 0, rise), n)
         .enumerate()
         .map(|(i, p)| (p.v as f64 - rise as f64 * i as f64 / (n - 1) as f64).abs())
         .fold(0.0, f64::max)

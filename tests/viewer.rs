@@ -45,9 +45,18 @@ fn view(dir: &Path, args: &[&str]) -> Vec<String> {
     line.split_whitespace().map(String::from).collect()
 }
 
-fn assert_same_image(a: &Path, b: &Path) {
-    let (wa, ha, pa) = read_rgb_png(a).unwrap();
-    let (wb, hb, pb) = read_rgb_png(b).unwrap();
+/// Renders the viewer's reported last frame with the stage subcommand and asserts
+/// it equals the viewer's screenshot, pixel for pixel.
+fn assert_renderer_agrees(dir: &Path, args: &[String], shot: &Path) {
+    let reference = dir.join("reference.png");
+    let status = Command::new(bin())
+        .args(args)
+        .args(["-o", reference.to_str().unwrap()])
+        .status()
+        .unwrap();
+    assert!(status.success(), "{args:?}");
+    let (wa, ha, pa) = read_rgb_png(shot).unwrap();
+    let (wb, hb, pb) = read_rgb_png(&reference).unwrap();
     assert_eq!((wa, ha), (wb, hb));
     let differing = pa
         .chunks(3)
@@ -57,10 +66,24 @@ fn assert_same_image(a: &Path, b: &Path) {
     assert_eq!(
         differing,
         0,
-        "{} and {} differ in {differing} pixels",
-        a.display(),
-        b.display()
+        "the viewer's frame and `rasterlab {}` differ in {differing} pixels",
+        args.join(" ")
     );
+}
+
+fn script(keys: &str, frames: &str, shot: &Path) -> Vec<String> {
+    [
+        "--frames",
+        frames,
+        "--fps",
+        "0",
+        "--keys",
+        keys,
+        "--screenshot",
+        shot.to_str().unwrap(),
+    ]
+    .map(String::from)
+    .to_vec()
 }
 
 #[test]
@@ -70,19 +93,8 @@ fn scripted_viewer_matches_the_renderer() {
     let shot = dir.join("shot.png");
     // Turn right, walk in, move the light, look at the depth stage, save a
     // capture with c, then come back to pixel-light.
-    let args = view(
-        &dir,
-        &[
-            "--frames",
-            "60",
-            "--fps",
-            "0",
-            "--keys",
-            "right*20,up*15,w*10,a*5,r*6,4,c,6",
-            "--screenshot",
-            shot.to_str().unwrap(),
-        ],
-    );
+    let keys = script("right*20,up*15,w*10,a*5,r*6,4,c,6", "60", &shot);
+    let args = view(&dir, &keys.iter().map(String::as_str).collect::<Vec<_>>());
     let joined = args.join(" ");
     assert!(joined.starts_with("pixel-light --size 500x500"), "{joined}");
     // 20 frames of 1/60 s at 60 degrees/s: 20 degrees of yaw, give or take f32 sums.
@@ -102,15 +114,7 @@ fn scripted_viewer_matches_the_renderer() {
         dir.join("rasterlab-depth-1.png").exists(),
         "c saved no capture"
     );
-
-    let reference = dir.join("reference.png");
-    let status = Command::new(bin())
-        .args(&args)
-        .args(["-o", reference.to_str().unwrap()])
-        .status()
-        .unwrap();
-    assert!(status.success());
-    assert_same_image(&shot, &reference);
+    assert_renderer_agrees(&dir, &args, &shot);
 }
 
 #[test]
@@ -118,31 +122,13 @@ fn scripted_viewer_matches_the_renderer() {
 fn seven_and_p_switch_interpolation() {
     let dir = temp_dir("viewer-affine");
     let shot = dir.join("shot.png");
-    let args = view(
-        &dir,
-        &[
-            "--frames",
-            "5",
-            "--fps",
-            "0",
-            "--keys",
-            "7",
-            "--screenshot",
-            shot.to_str().unwrap(),
-        ],
-    );
+    let keys = script("7", "5", &shot);
+    let args = view(&dir, &keys.iter().map(String::as_str).collect::<Vec<_>>());
     assert!(
         args.join(" ").starts_with("pixel-light --affine"),
         "{args:?}"
     );
-    let reference = dir.join("reference.png");
-    assert!(Command::new(bin())
-        .args(&args)
-        .args(["-o", reference.to_str().unwrap()])
-        .status()
-        .unwrap()
-        .success());
-    assert_same_image(&shot, &reference);
+    assert_renderer_agrees(&dir, &args, &shot);
     // p on vertex-light turns perspective correction off.
     let args = view(
         &dir,
@@ -158,28 +144,10 @@ fn seven_and_p_switch_interpolation() {
 #[ignore = "needs Xvfb; .ci/run runs it with --ignored"]
 fn walking_through_the_back_wall() {
     // 250 frames of 1/60 s at 1 unit/s: 4.2 units forward, from z = -3.001 through
-    // the back wall at z = 1, then turn to look back at it.
+    // the back wall at z = 1, then a 45 degree turn to the left.
     let dir = temp_dir("viewer-walk");
     let shot = dir.join("shot.png");
-    let args = view(
-        &dir,
-        &[
-            "--frames",
-            "300",
-            "--fps",
-            "0",
-            "--keys",
-            "up*250,left*45",
-            "--screenshot",
-            shot.to_str().unwrap(),
-        ],
-    );
-    let reference = dir.join("reference.png");
-    assert!(Command::new(bin())
-        .args(&args)
-        .args(["-o", reference.to_str().unwrap()])
-        .status()
-        .unwrap()
-        .success());
-    assert_same_image(&shot, &reference);
+    let keys = script("up*250,left*45", "300", &shot);
+    let args = view(&dir, &keys.iter().map(String::as_str).collect::<Vec<_>>());
+    assert_renderer_agrees(&dir, &args, &shot);
 }
