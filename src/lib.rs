@@ -9,8 +9,17 @@
 //! - [`polygon`]: lines, `ComputePolygonRows` and `DrawPolygonRows`.
 //! - [`stage`]: what each handout stage interpolates and shades.
 //! - [`light`]: equations 10 and 11.
-//! - [`render`]: the handout's `Draw`: vertex shader, rasterization, depth test, pixel shader.
+//! - [`clip`]: the near plane and the screen's guard band, which the handout leaves out.
+//! - [`render`]: the handout's `Draw`: vertex shader, clipping, rasterization, depth
+//!   test, pixel shader.
 //! - [`image_io`], [`overview`], [`timing`], [`parse`]: writing PNGs, Figure 1, `--time`, arguments.
+//!
+//! Around the core:
+//! - [`controls`], [`viewer`]: `rasterlab view`, the handout's `Update` loop in a window.
+//! - [`raytrace`], [`metrics`], [`report`], [`plot`]: the ray-traced reference, error
+//!   measures, and `rasterlab report`'s table and plot.
+//! - [`stress`]: `rasterlab stress`, the hard cases.
+//! - [`app`]: what each subcommand does.
 //!
 //! `docs/handout-map.md` maps each handout function to the item that implements it.
 
