@@ -5,7 +5,7 @@
 //!
 //! - [`scene`]: the test model (the Cornell box) as triangles.
 //! - [`camera`]: world to camera (eq. 8) and the truncating projection (eq. 3, 4).
-//! - [`interpolate`]: the handout's `Interpolate`, generic over what a pixel carries.
+//! - [`interpolate`](mod@interpolate): the handout's `Interpolate`, generic over what a pixel carries.
 //! - [`polygon`]: lines, `ComputePolygonRows` and `DrawPolygonRows`.
 //! - [`stage`]: what each handout stage interpolates and shades.
 //! - [`light`]: equations 10 and 11.
