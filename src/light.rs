@@ -31,10 +31,13 @@ impl Light {
         let r = self.position - position;
         // A floor under |r|² keeps a light on the surface itself finite (0 / 0
         // would be NaN); no surface in a scene of ordinary size comes that close.
-        let r2 = (r.x * r.x + r.y * r.y + r.z * r.z).max(1e-12);
-        // r̂·n̂ / (4π r²) as one division: (r·n) / (4π r² |r|).
+        let r2 = r.x * r.x + r.y * r.y + r.z * r.z;
+        let r2 = if r2 > 1e-12 { r2 } else { 1e-12 };
+        // r̂·n̂ / (4π r²) as one division: (r·n) / (4π r² |r|). Selects rather than
+        // max() so that loops over pixels vectorise (NaN also gives 0 here).
         let r_dot_n = r.x * normal.x + r.y * normal.y + r.z * normal.z;
-        self.power * (r_dot_n.max(0.0) / (4.0 * PI * r2 * r2.sqrt()))
+        let facing = if r_dot_n > 0.0 { r_dot_n } else { 0.0 };
+        self.power * (facing / (4.0 * PI * r2 * r2.sqrt()))
     }
 
     /// Eq. 11: `R = ρ (D + N)`, the light a diffuse surface of reflectance ρ sends back.

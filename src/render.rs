@@ -73,7 +73,16 @@ impl Frame {
 /// NaN becomes 0.
 #[inline]
 pub fn pack(c: Vec3) -> u32 {
-    let q = |v: f32| (v.clamp(0.0, 1.0) * 255.0 + 0.5) as u32;
+    // Written as selects and a plain conversion, not clamp and `as`, so loops over
+    // pixels vectorise; for every input, NaN included, the result is that of
+    // clamping then rounding.
+    let q = |v: f32| {
+        let v = if v > 0.0 { v } else { 0.0 }; // NaN -> 0
+        let v = if v < 1.0 { v } else { 1.0 };
+        // SAFETY: v is in [0, 1], so the value is in [0.5, 255.5]: finite and
+        // representable as i32, which is all `to_int_unchecked` requires.
+        unsafe { (v * 255.0 + 0.5).to_int_unchecked::<i32>() as u32 }
+    };
     (q(c.x) << 16) | (q(c.y) << 8) | q(c.z)
 }
 
@@ -115,26 +124,45 @@ fn off_screen<V>(corners: &[ScreenVertex<V>], screen: &Rect) -> bool {
         || corners.iter().all(|v| v.y > screen.bottom + m)
 }
 
+/// The depth test of section 5 for pixel `i`: true, with the depth buffer updated,
+/// if the pixel is nearer than what is there (or the stage has no depth buffer).
+#[inline(always)]
+fn depth_test<S: Stage>(frame: &mut Frame, i: usize, v: &S::Varying) -> bool {
+    if !S::DEPTH_BUFFER {
+        return true;
+    }
+    let zinv = S::zinv(v);
+    // Nearer means larger 1/z. A NaN compares false and is never drawn.
+    if zinv <= frame.depth[i] || zinv.is_nan() {
+        return false;
+    }
+    frame.depth[i] = zinv;
+    true
+}
+
 /// The handout's `PixelShader`: the depth test (if the stage has a depth buffer),
 /// then the stage's colour into the frame. `p` is on the screen.
 #[inline(always)]
 fn pixel_shader<S: Stage>(stage: &S, frame: &mut Frame, p: Pixel<S::Varying>, tri: &Triangle) {
     let i = p.y as usize * frame.width as usize + p.x as usize;
-    if S::DEPTH_BUFFER {
-        let zinv = S::zinv(&p.v);
-        // Nearer means larger 1/z. A NaN compares false and is never drawn.
-        if zinv <= frame.depth[i] || zinv.is_nan() {
-            return;
-        }
-        frame.depth[i] = zinv;
+    if depth_test::<S>(frame, i, &p.v) {
+        frame.color[i] = pack(stage.pixel_shader(&p.v, tri));
     }
-    frame.color[i] = pack(stage.pixel_shader(&p.v, tri));
+}
+
+/// A triangle's pixels that passed the depth test, waiting to be coloured
+/// together (`Stage::BATCHED`). Kept between triangles and frames.
+struct Batch<V> {
+    index: Vec<usize>,
+    v: Vec<V>,
+    color: Vec<u32>,
 }
 
 /// A stage with the buffers it reuses from one polygon and one frame to the next.
 pub struct Rasterizer<S: Stage> {
     pub stage: S,
     rows: Rows<S::Varying>,
+    batch: Batch<S::Varying>,
 }
 
 impl<S: Stage> Rasterizer<S> {
@@ -142,6 +170,11 @@ impl<S: Stage> Rasterizer<S> {
         Rasterizer {
             stage,
             rows: Rows::new(),
+            batch: Batch {
+                index: Vec::new(),
+                v: Vec::new(),
+                color: Vec::new(),
+            },
         }
     }
 
@@ -230,7 +263,30 @@ impl<S: Stage> Rasterizer<S> {
                         pixels.push(to_pixel(&projection, s));
                     }
                     compute_polygon_rows(pixels.as_slice(), &clip, &mut self.rows);
-                    draw_polygon_rows(&self.rows, &clip, |p| pixel_shader(stage, frame, p, tri));
+                    if !S::BATCHED {
+                        draw_polygon_rows(&self.rows, &clip, |p| {
+                            pixel_shader(stage, frame, p, tri)
+                        });
+                        continue;
+                    }
+                    // The same depth tests, then the triangle's visible pixels
+                    // coloured in one go: no pixel is visited twice within a
+                    // triangle, so the frame ends up exactly as pixel by pixel.
+                    let b = &mut self.batch;
+                    b.index.clear();
+                    b.v.clear();
+                    draw_polygon_rows(&self.rows, &clip, |p| {
+                        let i = p.y as usize * frame.width as usize + p.x as usize;
+                        if depth_test::<S>(frame, i, &p.v) {
+                            b.index.push(i);
+                            b.v.push(p.v);
+                        }
+                    });
+                    b.color.resize(b.v.len(), 0);
+                    stage.shade_batch(&b.v, tri, &mut b.color);
+                    for (&i, &c) in b.index.iter().zip(&b.color) {
+                        frame.color[i] = c;
+                    }
                 }
             }
         }
