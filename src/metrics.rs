@@ -103,6 +103,19 @@ pub fn interior_mask(
     mask
 }
 
+/// Eq. 3 and 4 without rounding, in f64: where a world point really lands on the
+/// screen, if it is in front of the camera.
+fn exact_projection(camera: &Camera, v: glam::Vec3) -> Option<(f64, f64)> {
+    let c = camera.to_camera(v);
+    let f = camera.focal as f64;
+    (c.z > 0.0).then(|| {
+        (
+            f * c.x as f64 / c.z as f64 + (camera.width / 2) as f64,
+            f * c.y as f64 / c.z as f64 + (camera.height / 2) as f64,
+        )
+    })
+}
+
 /// Of the scene's projected vertices in front of the camera and on screen, how
 /// many are drawn within one pixel of where the exact projection `f X/Z + W/2`
 /// puts them: the pixel (x, y) covers [x, x + 1) x [y, y + 1), and counts if its
@@ -112,16 +125,12 @@ pub fn points_within_one_pixel(
     camera: &Camera,
     frame: &Frame,
 ) -> (usize, usize) {
-    let p = camera.projection();
     let (w, h) = (camera.width as f64, camera.height as f64);
     let (mut within, mut total) = (0, 0);
     for v in scene.iter().flat_map(|t| t.vertices()) {
-        let c = p.to_camera(v);
-        if c.z <= 0.0 {
+        let Some((ex, ey)) = exact_projection(camera, v) else {
             continue;
-        }
-        let ex = camera.focal as f64 * c.x as f64 / c.z as f64 + (camera.width / 2) as f64;
-        let ey = camera.focal as f64 * c.y as f64 / c.z as f64 + (camera.height / 2) as f64;
+        };
         if !(0.0..w).contains(&ex) || !(0.0..h).contains(&ey) {
             continue;
         }
@@ -148,17 +157,7 @@ pub fn edge_pixels_within_one_pixel(
     camera: &Camera,
     frame: &Frame,
 ) -> (usize, usize) {
-    let p = camera.projection();
-    let half = ((camera.width / 2) as f64, (camera.height / 2) as f64);
-    let exact = |v| {
-        let c = p.to_camera(v);
-        (c.z > 0.0).then(|| {
-            (
-                camera.focal as f64 * c.x as f64 / c.z as f64 + half.0,
-                camera.focal as f64 * c.y as f64 / c.z as f64 + half.1,
-            )
-        })
-    };
+    let exact = |v| exact_projection(camera, v);
     let segments: Vec<((f64, f64), (f64, f64))> = scene
         .iter()
         .flat_map(|t| {
@@ -203,6 +202,36 @@ mod tests {
         assert_eq!((e.rmse, e.max, e.pixels), (0.0, 0, 16));
         assert!(e.psnr.is_infinite());
         assert_eq!(differing_fraction(&a, &a, None), 0.0);
+    }
+
+    #[test]
+    fn truncation_toward_zero_misplaces_points_left_of_the_centre() {
+        // Three vertices at z = 0, 3.001 from the handout's camera, placed so their
+        // exact projections are (300.7, 310.2), (320.3, 330.3) and (199.2, 250.5).
+        // The first two truncate to pixels whose centres are 0.2 to 0.3 away; the
+        // third has x - W/2 = -50.8, truncated toward zero to -50: pixel 200,
+        // centre 200.5, 1.3 from 199.2, so it does not count.
+        let camera = Camera::handout(500, 500);
+        let world = |x: f32, y: f32| {
+            glam::Vec3::new(
+                (x - 250.0) * 3.001 / 500.0,
+                (y - 250.0) * 3.001 / 500.0,
+                0.0,
+            )
+        };
+        let tri = Triangle::new(
+            world(300.7, 310.2),
+            world(320.3, 330.3),
+            world(199.2, 250.5),
+            glam::Vec3::ONE,
+        );
+        let frame = crate::stage::View::of(crate::stage::StageName::Points).render(
+            &[tri],
+            &camera,
+            crate::light::Light::handout(),
+        );
+        assert_eq!(frame.color.iter().filter(|&&c| c != 0).count(), 3);
+        assert_eq!(points_within_one_pixel(&[tri], &camera, &frame), (2, 3));
     }
 
     #[test]
