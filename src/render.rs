@@ -186,110 +186,159 @@ impl<S: Stage> Rasterizer<S> {
     /// exactly the handout's.
     pub fn draw(&mut self, scene: &[Triangle], camera: &Camera, frame: &mut Frame) {
         frame.clear(camera.width, camera.height, S::DEPTH_BUFFER);
-        let projection = camera.projection();
-        let clip = Clip::screen(camera.width, camera.height);
-        let screen = camera.screen_rect();
-        let g = camera.width.max(camera.height) as f32 * GUARD_BAND;
-        let band = Rect {
-            left: screen.left - g,
-            top: screen.top - g,
-            right: screen.right + g,
-            bottom: screen.bottom + g,
-        };
-        let stage = &self.stage;
-        let project = |c| vertex_shader(stage, &projection, c);
+        let view = ViewVolume::new(camera);
         for tri in scene {
             let corners = tri.vertices().map(|w| CameraVertex {
-                pos: projection.to_camera(w),
-                a: stage.vertex_shader(w, tri),
+                pos: view.projection.to_camera(w),
+                a: self.stage.vertex_shader(w, tri),
             });
             match S::PRIMITIVE {
-                Primitive::Points => {
-                    for c in corners {
-                        if camera.near.is_some_and(|n| c.pos.z < n || c.pos.z.is_nan()) {
-                            continue;
-                        }
-                        let Some(s) = project(c).filter(|s| band.contains(s)) else {
-                            continue;
-                        };
-                        let p = to_pixel(&projection, s);
-                        if clip.x.contains(&p.x) && clip.y.contains(&p.y) {
-                            pixel_shader(stage, frame, p, tri);
-                        }
-                    }
-                }
-                Primitive::Lines => {
-                    for i in 0..3 {
-                        let (p, q) = (corners[i], corners[(i + 1) % 3]);
-                        let near_cut = match camera.near {
-                            Some(n) => clip_segment_near(p, q, n),
-                            None => Some((p, q)),
-                        };
-                        let Some((p, q)) = near_cut else { continue };
-                        let (Some(p), Some(q)) = (project(p), project(q)) else {
-                            continue;
-                        };
-                        let banded = if band.contains(&p) && band.contains(&q) {
-                            Some((p, q))
-                        } else {
-                            clip_segment_rect(p, q, &band)
-                        };
-                        let Some((p, q)) = banded else { continue };
-                        let (p, q) = (to_pixel(&projection, p), to_pixel(&projection, q));
-                        draw_line(p, q, &clip, |px| pixel_shader(stage, frame, px, tri));
-                    }
-                }
-                Primitive::Polygons => {
-                    let mut polygon = Polygon::from_slice(&corners);
-                    if let Some(n) = camera.near {
-                        polygon = clip_near(&polygon, n);
-                    }
-                    let mut on_screen = Polygon::default();
-                    for &c in polygon.as_slice() {
-                        match project(c) {
-                            Some(s) => on_screen.push(s),
-                            None => break,
-                        }
-                    }
-                    if on_screen.len() != polygon.len() || off_screen(on_screen.as_slice(), &screen)
-                    {
-                        continue;
-                    }
-                    if !on_screen.as_slice().iter().all(|s| band.contains(s)) {
-                        on_screen = clip_rect(&on_screen, &band);
-                    }
-                    let mut pixels = Polygon::default();
-                    for &s in on_screen.as_slice() {
-                        pixels.push(to_pixel(&projection, s));
-                    }
-                    compute_polygon_rows(pixels.as_slice(), &clip, &mut self.rows);
-                    if !S::BATCHED {
-                        draw_polygon_rows(&self.rows, &clip, |p| {
-                            pixel_shader(stage, frame, p, tri)
-                        });
-                        continue;
-                    }
-                    // The same depth tests, then the triangle's visible pixels
-                    // coloured in one go: no pixel is visited twice within a
-                    // triangle, so the frame ends up exactly as pixel by pixel.
-                    let b = &mut self.batch;
-                    b.index.clear();
-                    b.v.clear();
-                    draw_polygon_rows(&self.rows, &clip, |p| {
-                        let i = p.y as usize * frame.width as usize + p.x as usize;
-                        if depth_test::<S>(frame, i, &p.v) {
-                            b.index.push(i);
-                            b.v.push(p.v);
-                        }
-                    });
-                    b.color.resize(b.v.len(), 0);
-                    stage.shade_batch(&b.v, tri, &mut b.color);
-                    for (&i, &c) in b.index.iter().zip(&b.color) {
-                        frame.color[i] = c;
-                    }
-                }
+                Primitive::Points => draw_points(&self.stage, &view, &corners, tri, frame),
+                Primitive::Lines => draw_edges(&self.stage, &view, &corners, tri, frame),
+                Primitive::Polygons => self.draw_polygon(&view, &corners, tri, frame),
             }
         }
+    }
+
+    /// The handout's `DrawPolygon`: clip, project, `ComputePolygonRows`, and
+    /// `DrawPolygonRows` with the depth test and the pixel shader.
+    fn draw_polygon(
+        &mut self,
+        view: &ViewVolume,
+        corners: &[CameraVertex<S::Attributes>; 3],
+        tri: &Triangle,
+        frame: &mut Frame,
+    ) {
+        let stage = &self.stage;
+        let mut polygon = Polygon::from_slice(corners);
+        if let Some(n) = view.near {
+            polygon = clip_near(&polygon, n);
+        }
+        let mut on_screen = Polygon::default();
+        for &c in polygon.as_slice() {
+            match vertex_shader(stage, &view.projection, c) {
+                Some(s) => on_screen.push(s),
+                None => return, // a corner on the camera plane (only without clipping)
+            }
+        }
+        if off_screen(on_screen.as_slice(), &view.screen) {
+            return;
+        }
+        if !on_screen.as_slice().iter().all(|s| view.band.contains(s)) {
+            on_screen = clip_rect(&on_screen, &view.band);
+        }
+        let mut pixels = Polygon::default();
+        for &s in on_screen.as_slice() {
+            pixels.push(to_pixel(&view.projection, s));
+        }
+        compute_polygon_rows(pixels.as_slice(), &view.clip, &mut self.rows);
+        if !S::BATCHED {
+            draw_polygon_rows(&self.rows, &view.clip, |p| {
+                pixel_shader(stage, frame, p, tri)
+            });
+            return;
+        }
+        // The same depth tests, then the triangle's visible pixels coloured in one
+        // go: no pixel is visited twice within a triangle, so the frame ends up
+        // exactly as pixel by pixel.
+        let b = &mut self.batch;
+        b.index.clear();
+        b.v.clear();
+        draw_polygon_rows(&self.rows, &view.clip, |p| {
+            let i = p.y as usize * frame.width as usize + p.x as usize;
+            if depth_test::<S>(frame, i, &p.v) {
+                b.index.push(i);
+                b.v.push(p.v);
+            }
+        });
+        b.color.resize(b.v.len(), 0);
+        stage.shade_batch(&b.v, tri, &mut b.color);
+        for (&i, &c) in b.index.iter().zip(&b.color) {
+            frame.color[i] = c;
+        }
+    }
+}
+
+/// Where a frame can be drawn: the camera's projection, its near plane, the screen,
+/// and the guard band around it.
+struct ViewVolume {
+    projection: Projection,
+    near: Option<f32>,
+    clip: Clip,
+    screen: Rect,
+    band: Rect,
+}
+
+impl ViewVolume {
+    fn new(camera: &Camera) -> Self {
+        let screen = camera.screen_rect();
+        let g = camera.width.max(camera.height) as f32 * GUARD_BAND;
+        ViewVolume {
+            projection: camera.projection(),
+            near: camera.near,
+            clip: Clip::screen(camera.width, camera.height),
+            screen,
+            band: Rect {
+                left: screen.left - g,
+                top: screen.top - g,
+                right: screen.right + g,
+                bottom: screen.bottom + g,
+            },
+        }
+    }
+}
+
+/// Section 2: each corner in front of the near plane as one pixel.
+fn draw_points<S: Stage>(
+    stage: &S,
+    view: &ViewVolume,
+    corners: &[CameraVertex<S::Attributes>; 3],
+    tri: &Triangle,
+    frame: &mut Frame,
+) {
+    for &c in corners {
+        if view.near.is_some_and(|n| c.pos.z < n || c.pos.z.is_nan()) {
+            continue;
+        }
+        let Some(s) = vertex_shader(stage, &view.projection, c).filter(|s| view.band.contains(s))
+        else {
+            continue;
+        };
+        let p = to_pixel(&view.projection, s);
+        if view.clip.x.contains(&p.x) && view.clip.y.contains(&p.y) {
+            pixel_shader(stage, frame, p, tri);
+        }
+    }
+}
+
+/// The handout's `DrawPolygonEdges`: a line from corner i to corner (i + 1) mod 3,
+/// each cut at the near plane and the guard band first.
+fn draw_edges<S: Stage>(
+    stage: &S,
+    view: &ViewVolume,
+    corners: &[CameraVertex<S::Attributes>; 3],
+    tri: &Triangle,
+    frame: &mut Frame,
+) {
+    let project = |c| vertex_shader(stage, &view.projection, c);
+    for i in 0..3 {
+        let (p, q) = (corners[i], corners[(i + 1) % 3]);
+        let near_cut = match view.near {
+            Some(n) => clip_segment_near(p, q, n),
+            None => Some((p, q)),
+        };
+        let Some((p, q)) = near_cut else { continue };
+        let (Some(p), Some(q)) = (project(p), project(q)) else {
+            continue;
+        };
+        let banded = if view.band.contains(&p) && view.band.contains(&q) {
+            Some((p, q))
+        } else {
+            clip_segment_rect(p, q, &view.band)
+        };
+        let Some((p, q)) = banded else { continue };
+        let (p, q) = (to_pixel(&view.projection, p), to_pixel(&view.projection, q));
+        draw_line(p, q, &view.clip, |px| pixel_shader(stage, frame, px, tri));
     }
 }
 
