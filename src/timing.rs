@@ -13,13 +13,20 @@ pub struct Timing {
 
 /// Runs `f` `runs` times (at least once) and times each run.
 pub fn time_runs(runs: usize, mut f: impl FnMut()) -> Timing {
-    let mut t: Vec<Duration> = (0..runs.max(1))
-        .map(|_| {
-            let start = Instant::now();
-            f();
-            start.elapsed()
-        })
-        .collect();
+    summarize(
+        (0..runs.max(1))
+            .map(|_| {
+                let start = Instant::now();
+                f();
+                start.elapsed()
+            })
+            .collect(),
+    )
+}
+
+/// Median (the mean of the middle two for an even count), min and max of
+/// `samples`, which must not be empty.
+pub fn summarize(mut t: Vec<Duration>) -> Timing {
     t.sort();
     let n = t.len();
     let median = if n % 2 == 1 {
@@ -59,13 +66,26 @@ mod tests {
 
     #[test]
     fn median_of_even_and_odd_counts() {
-        let mut d = [5u64, 1, 3].into_iter();
-        let t = time_runs(3, || {
-            std::thread::sleep(Duration::from_millis(d.next().unwrap()))
-        });
-        assert!(t.min <= t.median && t.median <= t.max);
-        assert_eq!(t.runs, 3);
-        assert!(t.median >= Duration::from_millis(3));
+        let ms = |v: &[u64]| v.iter().map(|&m| Duration::from_millis(m)).collect();
+        let odd = summarize(ms(&[5, 1, 3]));
+        assert_eq!(
+            (odd.median, odd.min, odd.max, odd.runs),
+            (
+                Duration::from_millis(3),
+                Duration::from_millis(1),
+                Duration::from_millis(5),
+                3
+            )
+        );
+        let even = summarize(ms(&[4, 1, 3, 10]));
+        assert_eq!(even.median, Duration::from_micros(3500));
+        let mut calls = 0;
+        assert_eq!(time_runs(0, || calls += 1).runs, 1);
+        assert_eq!(calls, 1);
+    }
+
+    #[test]
+    fn the_line_format() {
         let s = Timing {
             median: Duration::from_micros(840),
             min: Duration::from_micros(800),

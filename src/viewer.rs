@@ -81,12 +81,12 @@ pub fn command_for(view: View, s: &Settings) -> String {
 }
 
 fn median(samples: impl Iterator<Item = Duration>) -> Duration {
-    let mut v: Vec<Duration> = samples.collect();
+    let v: Vec<Duration> = samples.collect();
     if v.is_empty() {
-        return Duration::ZERO;
+        Duration::ZERO
+    } else {
+        crate::timing::summarize(v).median
     }
-    v.sort();
-    v[v.len() / 2]
 }
 
 fn title(view: View, frame_times: &VecDeque<Duration>, draw: Duration) -> String {
