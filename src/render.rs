@@ -359,29 +359,46 @@ impl<S: Stage> Draw for Rasterizer<S> {
     }
 }
 
-fn boxed<S: Stage + 'static>(stage: S) -> Box<dyn Draw> {
-    Box::new(Rasterizer::new(stage))
+/// Something to do with a stage once its type is known: the one place that turns
+/// a `View` (a name and a flag, chosen at run time) into a concrete stage type.
+pub trait WithStage {
+    type Output;
+    fn with<S: Stage + 'static>(self, stage: S) -> Self::Output;
 }
 
-fn with_correction<C: Correction>(stage: StageName, light: Light) -> Box<dyn Draw> {
+fn with_correction<C: Correction, W: WithStage>(stage: StageName, light: Light, w: W) -> W::Output {
     match stage {
-        StageName::Points => boxed(Points),
-        StageName::Wireframe => boxed(Wireframe),
-        StageName::Filled => boxed(Filled),
-        StageName::Depth => boxed(Depth::<C>::new()),
-        StageName::VertexLight => boxed(VertexLight::<C>::new(light)),
-        StageName::PixelLight => boxed(PixelLight::<C>::new(light)),
+        StageName::Points => w.with(Points),
+        StageName::Wireframe => w.with(Wireframe),
+        StageName::Filled => w.with(Filled),
+        StageName::Depth => w.with(Depth::<C>::new()),
+        StageName::VertexLight => w.with(VertexLight::<C>::new(light)),
+        StageName::PixelLight => w.with(PixelLight::<C>::new(light)),
+    }
+}
+
+struct Boxed;
+
+impl WithStage for Boxed {
+    type Output = Box<dyn Draw>;
+    fn with<S: Stage + 'static>(self, stage: S) -> Box<dyn Draw> {
+        Box::new(Rasterizer::new(stage))
     }
 }
 
 impl View {
+    /// Calls `w` with this figure's stage, lit by `light` where it shades.
+    pub fn with_stage<W: WithStage>(self, light: Light, w: W) -> W::Output {
+        if self.affine {
+            with_correction::<Affine, W>(self.stage, light, w)
+        } else {
+            with_correction::<Perspective, W>(self.stage, light, w)
+        }
+    }
+
     /// The rasterizer for this figure, with `light` for the stages that shade.
     pub fn rasterizer(self, light: Light) -> Box<dyn Draw> {
-        if self.affine {
-            with_correction::<Affine>(self.stage, light)
-        } else {
-            with_correction::<Perspective>(self.stage, light)
-        }
+        self.with_stage(light, Boxed)
     }
 
     /// Draws this figure of `scene` into a new frame.

@@ -9,13 +9,10 @@ use crate::interpolate::{Pixel, Steps};
 use crate::light::Light;
 use crate::metrics::{differing_fraction, image_error, interior_mask};
 use crate::raytrace::{self, raytrace, Shading};
-use crate::render::{Frame, Rasterizer};
+use crate::render::{Frame, Rasterizer, WithStage};
 use crate::report::INTERIOR_MARGIN;
 use crate::scene::{cornell_box, Triangle};
-use crate::stage::{
-    Affine, Correction, Depth, Filled, Perspective, PixelLight, Points, Stage, StageName,
-    VertexLight, View, Wireframe,
-};
+use crate::stage::{Stage, StageName, View};
 use crate::timing::time_runs;
 use glam::Vec3;
 use std::cell::Cell;
@@ -59,35 +56,24 @@ impl<S: Stage> Stage for Checked<S> {
     }
 }
 
-fn draw_checked<S: Stage>(
-    stage: S,
-    scene: &[Triangle],
-    camera: &Camera,
+/// Draws a scene with the stage wrapped in [`Checked`]: the frame, how many
+/// non-finite values the first draw produced, and the median time in ms.
+struct DrawChecked<'a> {
+    scene: &'a [Triangle],
+    camera: &'a Camera,
     runs: usize,
-) -> (Frame, u64, f64) {
-    let mut r = Rasterizer::new(Checked(stage));
-    let mut frame = Frame::default();
-    NON_FINITE.with(|n| n.set(0));
-    r.draw(scene, camera, &mut frame);
-    let bad = NON_FINITE.with(|n| n.get());
-    let t = time_runs(runs, || r.draw(scene, camera, &mut frame));
-    (frame, bad, t.median.as_secs_f64() * 1e3)
 }
 
-fn draw_view<C: Correction>(
-    stage: StageName,
-    light: Light,
-    scene: &[Triangle],
-    camera: &Camera,
-    runs: usize,
-) -> (Frame, u64, f64) {
-    match stage {
-        StageName::Points => draw_checked(Points, scene, camera, runs),
-        StageName::Wireframe => draw_checked(Wireframe, scene, camera, runs),
-        StageName::Filled => draw_checked(Filled, scene, camera, runs),
-        StageName::Depth => draw_checked(Depth::<C>::new(), scene, camera, runs),
-        StageName::VertexLight => draw_checked(VertexLight::<C>::new(light), scene, camera, runs),
-        StageName::PixelLight => draw_checked(PixelLight::<C>::new(light), scene, camera, runs),
+impl WithStage for DrawChecked<'_> {
+    type Output = (Frame, u64, f64);
+    fn with<S: Stage + 'static>(self, stage: S) -> (Frame, u64, f64) {
+        let mut r = Rasterizer::new(Checked(stage));
+        let mut frame = Frame::default();
+        NON_FINITE.with(|n| n.set(0));
+        r.draw(self.scene, self.camera, &mut frame);
+        let bad = NON_FINITE.with(|n| n.get());
+        let t = time_runs(self.runs, || r.draw(self.scene, self.camera, &mut frame));
+        (frame, bad, t.median.as_secs_f64() * 1e3)
     }
 }
 
@@ -471,11 +457,12 @@ pub fn catalogue(quick: bool) -> Vec<Case> {
 /// Draws a case, checks it, and compares it with the ray tracer if it has a bound.
 pub fn run(case: &Case, runs: usize) -> Outcome {
     let drawn = catch_unwind(AssertUnwindSafe(|| {
-        if case.view.affine {
-            draw_view::<Affine>(case.view.stage, case.light, &case.scene, &case.camera, runs)
-        } else {
-            draw_view::<Perspective>(case.view.stage, case.light, &case.scene, &case.camera, runs)
-        }
+        let draw = DrawChecked {
+            scene: &case.scene,
+            camera: &case.camera,
+            runs,
+        };
+        case.view.with_stage(case.light, draw)
     }));
     let mut outcome = Outcome {
         name: case.name.clone(),
