@@ -25,19 +25,6 @@ pub struct Camera {
 /// The default near plane: 1 cm in a room 2 m wide.
 pub const DEFAULT_NEAR: f32 = 0.01;
 
-/// A vertex after the handout's `VertexShader`: its pixel and its inverse depth.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Projected {
-    pub x: i32,
-    pub y: i32,
-    /// 1/z in camera space; positive in front of the camera.
-    pub zinv: f32,
-}
-
-/// [`Projection::project`] refuses points projected farther than this from the
-/// screen centre, whose pixel would not fit an `i32` safely.
-pub const MAX_PIXEL_COORDINATE: f32 = (1 << 20) as f32;
-
 impl Camera {
     /// The course skeleton's camera: at (0, 0, -3.001), looking along +z, f = 500.
     pub fn handout(width: u32, height: u32) -> Self {
@@ -123,24 +110,11 @@ impl Projection {
     }
 
     /// The handout's rounding: truncate toward zero, then add the half size. The
-    /// caller keeps `x` and `y` within ±[`MAX_PIXEL_COORDINATE`].
+    /// core only calls it inside the guard band (`render::GUARD_BAND`), far inside
+    /// the range of `i32`.
     #[inline]
     pub fn to_pixel(&self, x: f32, y: f32) -> (i32, i32) {
         (x as i32 + self.half_width, y as i32 + self.half_height)
-    }
-
-    /// The handout's `VertexShader` projection, in f32:
-    /// `zinv = 1/z; x = int(f * x * zinv) + W/2`, truncating toward zero before the
-    /// half size is added. Returns `None` for a vertex that cannot be drawn without
-    /// clipping: at or behind the camera plane, or projected absurdly far away.
-    pub fn project(&self, camera_space: Vec3) -> Option<Projected> {
-        let (x, y, zinv) = self.project_centred(camera_space)?;
-        let inside = |v: f32| v.abs() < MAX_PIXEL_COORDINATE;
-        if !(zinv > 0.0 && inside(x) && inside(y)) {
-            return None;
-        }
-        let (x, y) = self.to_pixel(x, y);
-        Some(Projected { x, y, zinv })
     }
 }
 
@@ -174,10 +148,15 @@ mod tests {
     }
 
     #[test]
-    fn vertices_behind_the_camera_are_not_projected() {
-        let c = Camera::handout(500, 500);
-        assert_eq!(c.projection().project(Vec3::new(0.0, 0.0, -1.0)), None);
-        assert_eq!(c.projection().project(Vec3::new(1.0, 0.0, 0.0)), None);
-        assert_eq!(c.projection().project(Vec3::new(f32::NAN, 0.0, 1.0)), None);
+    fn points_on_the_camera_plane_are_not_projected() {
+        let p = Camera::handout(500, 500).projection();
+        assert_eq!(p.project_centred(Vec3::new(1.0, 0.0, 0.0)), None);
+        assert_eq!(p.project_centred(Vec3::new(f32::NAN, 0.0, 1.0)), None);
+        // Behind the camera the handout's formula still gives numbers (mirrored);
+        // the near-plane clip, not the projection, keeps such points out.
+        assert_eq!(
+            p.project_centred(Vec3::new(1.0, 0.0, -2.0)),
+            Some((-250.0, -0.0, -0.5))
+        );
     }
 }

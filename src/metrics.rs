@@ -1,7 +1,7 @@
 //! How far a stage's image is from the reference, in numbers a student can compare.
 
-use crate::camera::Camera;
-use crate::render::Frame;
+use crate::camera::{Camera, Projection};
+use crate::render::{unpack, Frame};
 use crate::scene::Triangle;
 
 /// Error of an image against a reference, in 8-bit units over all three channels.
@@ -13,10 +13,6 @@ pub struct ImageError {
     pub psnr: f64,
     /// Pixels compared.
     pub pixels: usize,
-}
-
-fn channels(c: u32) -> [u8; 3] {
-    [(c >> 16) as u8, (c >> 8) as u8, c as u8]
 }
 
 /// RMSE, max and PSNR of `image` against `reference` over the pixels where `mask`
@@ -33,7 +29,7 @@ pub fn image_error(image: &Frame, reference: &Frame, mask: Option<&[bool]>) -> I
             continue;
         }
         pixels += 1;
-        for (p, q) in channels(a).into_iter().zip(channels(b)) {
+        for (p, q) in unpack(a).into_iter().zip(unpack(b)) {
             let d = p.abs_diff(q);
             sum += (d as u64) * (d as u64);
             max = max.max(d);
@@ -105,8 +101,8 @@ pub fn interior_mask(
 
 /// Eq. 3 and 4 without rounding, in f64: where a world point really lands on the
 /// screen, if it is in front of the camera.
-fn exact_projection(camera: &Camera, v: glam::Vec3) -> Option<(f64, f64)> {
-    let c = camera.to_camera(v);
+fn exact_projection(camera: &Camera, p: &Projection, v: glam::Vec3) -> Option<(f64, f64)> {
+    let c = p.to_camera(v);
     let f = camera.focal as f64;
     (c.z > 0.0).then(|| {
         (
@@ -126,9 +122,10 @@ pub fn points_within_one_pixel(
     frame: &Frame,
 ) -> (usize, usize) {
     let (w, h) = (camera.width as f64, camera.height as f64);
+    let p = camera.projection();
     let (mut within, mut total) = (0, 0);
     for v in scene.iter().flat_map(|t| t.vertices()) {
-        let Some((ex, ey)) = exact_projection(camera, v) else {
+        let Some((ex, ey)) = exact_projection(camera, &p, v) else {
             continue;
         };
         if !(0.0..w).contains(&ex) || !(0.0..h).contains(&ey) {
@@ -157,7 +154,8 @@ pub fn edge_pixels_within_one_pixel(
     camera: &Camera,
     frame: &Frame,
 ) -> (usize, usize) {
-    let exact = |v| exact_projection(camera, v);
+    let p = camera.projection();
+    let exact = |v| exact_projection(camera, &p, v);
     let segments: Vec<((f64, f64), (f64, f64))> = scene
         .iter()
         .flat_map(|t| {

@@ -2,7 +2,7 @@
 //! glance. Four columns, left to right and top to bottom in the handout's order,
 //! separated by a grey gutter.
 
-use crate::render::Frame;
+use crate::render::{unpack, Frame};
 
 /// Gutter between panels, in pixels.
 pub const GUTTER: u32 = 8;
@@ -37,7 +37,7 @@ pub fn overview(frames: &[Frame]) -> Option<(u32, u32, Vec<u8>)> {
             let start = (((y0 + y) * width + x0) * 3) as usize;
             let dst = &mut rgb[start..start + (fw * 3) as usize];
             for (d, &c) in dst.chunks_exact_mut(3).zip(src) {
-                d.copy_from_slice(&[(c >> 16) as u8, (c >> 8) as u8, c as u8]);
+                d.copy_from_slice(&unpack(c));
             }
         }
     }

@@ -56,17 +56,19 @@ impl Frame {
 
     /// The colour at (x, y) as 8-bit RGB.
     pub fn rgb(&self, x: u32, y: u32) -> [u8; 3] {
-        let c = self.color[(y * self.width + x) as usize];
-        [(c >> 16) as u8, (c >> 8) as u8, c as u8]
+        unpack(self.color[(y * self.width + x) as usize])
     }
 
     /// The whole image as 8-bit RGB rows, top first.
     pub fn to_rgb8(&self) -> Vec<u8> {
-        self.color
-            .iter()
-            .flat_map(|&c| [(c >> 16) as u8, (c >> 8) as u8, c as u8])
-            .collect()
+        self.color.iter().flat_map(|&c| unpack(c)).collect()
     }
+}
+
+/// `0x00RRGGBB` as `[r, g, b]`: the inverse of [`pack`]'s layout.
+#[inline]
+pub fn unpack(c: u32) -> [u8; 3] {
+    [(c >> 16) as u8, (c >> 8) as u8, c as u8]
 }
 
 /// A linear colour in [0, 1] as `0x00RRGGBB`, clamped and rounded to 8 bits.

@@ -28,9 +28,11 @@ fn the_front_edges_of_the_box_land_on_the_image_borders() {
         (-1.0, 1.0, 1, 499),
         (1.0, 1.0, 499, 499),
     ] {
-        let q = p.project(p.to_camera(glam::Vec3::new(x, y, -1.0))).unwrap();
-        assert_eq!((q.x, q.y), (px, py), "corner ({x}, {y}, -1)");
-        assert!((q.zinv - 1.0 / 2.001).abs() < 1e-7);
+        let (cx, cy, zinv) = p
+            .project_centred(p.to_camera(glam::Vec3::new(x, y, -1.0)))
+            .unwrap();
+        assert_eq!(p.to_pixel(cx, cy), (px, py), "corner ({x}, {y}, -1)");
+        assert!((zinv - 1.0 / 2.001).abs() < 1e-7);
     }
     // In the wireframe the front edges are the lines x = 1, x = 499, y = 1, y = 499.
     // The outermost column and row are black but for two pixels: the last pixels
