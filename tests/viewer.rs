@@ -25,7 +25,7 @@ fn have_xvfb() -> bool {
 
 /// Runs the viewer under Xvfb in `dir`; returns the arguments of the render
 /// command it prints for its last frame.
-fn view(dir: &Path, args: &[&str]) -> Vec<String> {
+fn view<S: AsRef<std::ffi::OsStr>>(dir: &Path, args: &[S]) -> Vec<String> {
     assert!(
         have_xvfb(),
         "xvfb-run not found: install Debian's xvfb and xauth to run this test"
@@ -94,7 +94,7 @@ fn scripted_viewer_matches_the_renderer() {
     // Turn right, walk in, move the light, look at the depth stage, save a
     // capture with c, then come back to pixel-light.
     let keys = script("right*20,up*15,w*10,a*5,r*6,4,c,6", "60", &shot);
-    let args = view(&dir, &keys.iter().map(String::as_str).collect::<Vec<_>>());
+    let args = view(&dir, &keys);
     let joined = args.join(" ");
     assert!(joined.starts_with("pixel-light --size 500x500"), "{joined}");
     // 20 frames of 1/60 s at 60 degrees/s: 20 degrees of yaw, give or take f32 sums.
@@ -123,7 +123,7 @@ fn seven_and_p_switch_interpolation() {
     let dir = temp_dir("viewer-affine");
     let shot = dir.join("shot.png");
     let keys = script("7", "5", &shot);
-    let args = view(&dir, &keys.iter().map(String::as_str).collect::<Vec<_>>());
+    let args = view(&dir, &keys);
     assert!(
         args.join(" ").starts_with("pixel-light --affine"),
         "{args:?}"
@@ -148,6 +148,6 @@ fn walking_through_the_back_wall() {
     let dir = temp_dir("viewer-walk");
     let shot = dir.join("shot.png");
     let keys = script("up*250,left*45", "300", &shot);
-    let args = view(&dir, &keys.iter().map(String::as_str).collect::<Vec<_>>());
+    let args = view(&dir, &keys);
     assert_renderer_agrees(&dir, &args, &shot);
 }
