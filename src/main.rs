@@ -2,9 +2,9 @@
 
 use clap::{Args, Parser, Subcommand};
 use glam::Vec3;
-use rasterlab::app::{self, Settings};
-use rasterlab::{controls, parse, raytrace, viewer};
-use rasterlab::{StageName, View};
+use rasterlab::app::{self, controls, parse, viewer, Settings};
+use rasterlab::measure::raytrace;
+use rasterlab::{Figure, StageName};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -220,7 +220,7 @@ struct RowsArgs {
 }
 
 fn render(stage: StageName, affine: bool, args: &Render) -> Result<(), String> {
-    let view = View { stage, affine };
+    let view = Figure { stage, affine };
     let out = args
         .out
         .clone()
@@ -287,35 +287,10 @@ fn run(cli: Cli) -> Result<(), String> {
             Ok(())
         }
         Command::Stress(a) => {
-            let cases = rasterlab::stress::catalogue(a.quick);
-            let runs = if a.quick { 1 } else { 3 };
-            let mut outcomes = Vec::new();
-            for (i, case) in cases.iter().enumerate() {
-                let o = rasterlab::stress::run(case, runs);
-                eprintln!(
-                    "[{:>2}/{}] {} ({}): {}",
-                    i + 1,
-                    cases.len(),
-                    o.name,
-                    o.stage,
-                    if o.pass { "ok" } else { "FAIL" }
-                );
-                outcomes.push(o);
-            }
-            println!("{}", rasterlab::stress::table(&outcomes));
-            println!("Long spans, largest distance from the exact position:\n");
-            println!(
-                "{}",
-                rasterlab::stress::drift_table(&[
-                    1_000, 4_096, 5_000, 32_000, 100_000, 1_000_000, 10_000_000
-                ])
-            );
-            let failed = outcomes.iter().filter(|o| !o.pass).count();
+            let (tables, failed, total) = app::stress(a.quick, |line| eprintln!("{line}"));
+            println!("{tables}");
             if failed > 0 {
-                return Err(format!(
-                    "{failed} of {} stress cases failed",
-                    outcomes.len()
-                ));
+                return Err(format!("{failed} of {total} stress cases failed"));
             }
             Ok(())
         }

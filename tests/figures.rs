@@ -3,10 +3,10 @@
 //! `cargo run --release -- all --out steps` and commit the new PNGs.
 
 mod common;
+use rasterlab::app::image_io::read_rgb_png;
+use rasterlab::app::overview::overview;
 use rasterlab::app::{self, Settings, OVERVIEW_FILE};
-use rasterlab::image_io::read_rgb_png;
-use rasterlab::overview::overview;
-use rasterlab::View;
+use rasterlab::{cornell_box, Figure};
 use std::path::Path;
 
 fn steps() -> &'static Path {
@@ -41,8 +41,8 @@ fn assert_matches(name: &str, width: u32, height: u32, rgb: &[u8]) {
 #[test]
 fn committed_figures_match_the_code() {
     let mut frames = Vec::new();
-    for view in View::FIGURES {
-        let (frame, _) = app::render(view, &Settings::default(), None);
+    for view in Figure::FIGURES {
+        let (frame, _) = app::render(view, &cornell_box(), &Settings::default(), None);
         assert_matches(
             view.figure_file(),
             frame.width,

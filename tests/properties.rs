@@ -5,9 +5,8 @@
 
 use glam::Vec3;
 use proptest::prelude::*;
-use rasterlab::render::Frame;
-use rasterlab::scene::Triangle;
-use rasterlab::{Camera, Light, StageName, View};
+use rasterlab::pipeline::Target;
+use rasterlab::{Camera, Figure, Frame, Light, Mesh, StageName, Triangle, Uniforms};
 
 fn coord() -> impl Strategy<Value = f32> {
     prop_oneof![
@@ -54,30 +53,99 @@ fn camera() -> impl Strategy<Value = Camera> {
         )
 }
 
-fn view() -> impl Strategy<Value = View> {
-    prop::sample::select(View::FIGURES.to_vec())
+fn view() -> impl Strategy<Value = Figure> {
+    prop::sample::select(Figure::FIGURES.to_vec())
 }
 
-fn draw(view: View, scene: &[Triangle], camera: &Camera) -> Frame {
-    view.render(scene, camera, Light::handout())
+fn uniforms() -> Uniforms {
+    Uniforms {
+        light: Light::handout(),
+    }
+}
+
+fn draw(view: Figure, scene: &[Triangle], camera: &Camera) -> Frame {
+    view.render(&Mesh::from_triangles(scene), camera, &uniforms())
+}
+
+/// The same image drawn as two bands of rows, split at row `split`, each into
+/// buffers of its own: what a thread drawing half the image would do.
+fn draw_in_bands(view: Figure, scene: &[Triangle], camera: &Camera, split: u32) -> Frame {
+    let mesh = Mesh::from_triangles(scene);
+    let mut whole = Frame::default();
+    let mut pipeline = view.pipeline();
+    pipeline.render(&mesh, camera, &uniforms(), &mut whole); // sizes the buffers
+    let (w, h) = (camera.width, camera.height);
+    let split = split.min(h);
+    let has_depth = !whole.depth.is_empty();
+    let n = (w * split) as usize;
+    let (color_top, color_bottom) = whole.color.split_at_mut(n);
+    let mut depth = whole.depth.clone();
+    let (depth_top, depth_bottom) = depth.split_at_mut(if has_depth { n } else { 0 });
+    for (rows, color, depth) in [
+        (0..split, color_top, depth_top),
+        (split..h, color_bottom, depth_bottom),
+    ] {
+        color.fill(0x00ab_cdef); // anything: the draw must clear its band
+        let mut target = Target {
+            width: w,
+            height: h,
+            rows,
+            color: Some(color),
+            depth: has_depth.then_some(depth),
+        };
+        pipeline.draw(&mesh, camera, &uniforms(), &mut target);
+    }
+    whole.depth = depth;
+    whole
 }
 
 proptest! {
     #![proptest_config(ProptestConfig { cases: 400, ..ProptestConfig::default() })]
 
     #[test]
-    fn random_scenes_draw_safely(scene in prop::collection::vec(triangle(), 1..6), camera in camera(), view in view()) {
-        // Out-of-bounds writes would panic on indexing; the frame must keep its size.
+    fn random_scenes_draw_safely_and_bands_agree(
+        scene in prop::collection::vec(triangle(), 1..6),
+        camera in camera(),
+        view in view(),
+        split in 0u32..64,
+    ) {
+        // An out-of-bounds write would panic on indexing.
         let frame = draw(view, &scene, &camera);
-        prop_assert_eq!(frame.color.len(), (camera.width * camera.height) as usize);
         prop_assert!(frame.depth.iter().all(|z| !z.is_nan()));
-        prop_assert!(frame.color.iter().all(|&c| c <= 0x00ff_ffff));
+        // Two bands of rows drawn on their own make the same image, colour and depth.
+        let banded = draw_in_bands(view, &scene, &camera, split);
+        prop_assert_eq!(&frame.color, &banded.color);
+        prop_assert_eq!(
+            frame.depth.iter().map(|z| z.to_bits()).collect::<Vec<_>>(),
+            banded.depth.iter().map(|z| z.to_bits()).collect::<Vec<_>>()
+        );
     }
 
+    /// Drawing depends on nothing but its input: not on what the frame held before,
+    /// nor on what the pipeline drew last, nor on the thread it runs on.
     #[test]
-    fn drawing_is_deterministic(scene in prop::collection::vec(triangle(), 1..4), camera in camera(), view in view()) {
-        let (a, b) = (draw(view, &scene, &camera), draw(view, &scene, &camera));
-        prop_assert_eq!(a.color, b.color);
+    fn drawing_is_deterministic(
+        scene in prop::collection::vec(triangle(), 1..4),
+        other in prop::collection::vec(triangle(), 1..4),
+        camera in camera(),
+        view in view(),
+    ) {
+        let fresh = draw(view, &scene, &camera);
+        let (mesh, other) = (Mesh::from_triangles(&scene), Mesh::from_triangles(&other));
+        let reused = std::thread::scope(|s| {
+            s.spawn(|| {
+                let mut pipeline = view.pipeline();
+                let mut frame = Frame::default();
+                let mut bigger = camera;
+                bigger.width += 7;
+                pipeline.render(&other, &bigger, &uniforms(), &mut frame);
+                pipeline.render(&mesh, &camera, &uniforms(), &mut frame);
+                frame
+            })
+            .join()
+            .unwrap()
+        });
+        prop_assert_eq!(fresh.color, reused.color);
     }
 
     /// A cube seen from outside covers its silhouette without holes: every pixel
@@ -104,7 +172,7 @@ proptest! {
             height: h,
             near: Some(0.01),
         };
-        let frame = draw(View::of(StageName::Filled), &scene, &camera);
+        let frame = draw(Figure::of(StageName::Filled), &scene, &camera);
         let p = camera.projection();
         let corners: Vec<(f32, f32)> = cube_corners(size)
             .iter()

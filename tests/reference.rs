@@ -3,10 +3,10 @@
 mod common;
 use common::temp_dir;
 use rasterlab::app::Settings;
-use rasterlab::metrics::{image_error, interior_mask};
-use rasterlab::raytrace::{raytrace, Options};
-use rasterlab::report::INTERIOR_MARGIN;
-use rasterlab::{cornell_box, StageName, View};
+use rasterlab::measure::metrics::{image_error, interior_mask};
+use rasterlab::measure::raytrace::{raytrace, Options};
+use rasterlab::measure::report::INTERIOR_MARGIN;
+use rasterlab::{cornell_box, Figure, StageName};
 use std::process::Command;
 
 #[test]
@@ -16,7 +16,7 @@ fn pixel_light_is_the_closest_lit_stage_to_the_ray_tracer() {
     let reference = raytrace(&scene, &s.camera(), &s.light(), &Options::default());
     let mask = interior_mask(&scene, &reference.hit, 500, 500, INTERIOR_MARGIN);
     let error = |stage, affine| {
-        let frame = View { stage, affine }.render(&scene, &s.camera(), s.light());
+        let frame = Figure { stage, affine }.render(&scene, &s.camera(), &s.uniforms());
         image_error(&frame, &reference.frame, Some(&mask)).rmse
     };
     let correct = error(StageName::PixelLight, false);
@@ -60,7 +60,7 @@ fn quick_report_writes_its_three_files() {
         lines.iter().all(|l| l.split(',').count() == columns),
         "{csv}"
     );
-    let (w, h, _) = rasterlab::image_io::read_rgb_png(&dir.join("error-vs-time.png")).unwrap();
+    let (w, h, _) = rasterlab::app::image_io::read_rgb_png(&dir.join("error-vs-time.png")).unwrap();
     assert_eq!((w, h), (1600, 940));
 }
 
@@ -82,7 +82,7 @@ fn raytrace_subcommand() {
         .output()
         .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let (w, h, _) = rasterlab::image_io::read_rgb_png(&out).unwrap();
+    let (w, h, _) = rasterlab::app::image_io::read_rgb_png(&out).unwrap();
     assert_eq!((w, h), (40, 30));
     let o = Command::new(env!("CARGO_BIN_EXE_rasterlab"))
         .args(["raytrace", "--samples", "0"])

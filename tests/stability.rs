@@ -103,8 +103,8 @@ fn no_clip_draws_wrong_but_safely() {
         args.extend(extra);
         assert!(rasterlab(&args).status.success());
     }
-    let (_, _, a) = rasterlab::image_io::read_rgb_png(&clipped).unwrap();
-    let (_, _, b) = rasterlab::image_io::read_rgb_png(&unclipped).unwrap();
+    let (_, _, a) = rasterlab::app::image_io::read_rgb_png(&clipped).unwrap();
+    let (_, _, b) = rasterlab::app::image_io::read_rgb_png(&unclipped).unwrap();
     // The unclipped frame paints a corner-behind-the-camera triangle across the
     // view: a large share of its pixels differ from the clipped one.
     let differing = a.chunks(3).zip(b.chunks(3)).filter(|(p, q)| p != q).count();

@@ -3,6 +3,10 @@
 
 mod common;
 use common::*;
+use rasterlab::pipeline::clip::ScreenVertex;
+use rasterlab::pipeline::raster::rows::to_pixel;
+use rasterlab::pipeline::raster::{Bounds, Viewport};
+use rasterlab::pipeline::Nothing;
 use rasterlab::StageName::*;
 use rasterlab::{cornell_box, Camera};
 use std::collections::BTreeSet;
@@ -31,7 +35,19 @@ fn the_front_edges_of_the_box_land_on_the_image_borders() {
         let (cx, cy, zinv) = p
             .project_centred(p.to_camera(glam::Vec3::new(x, y, -1.0)))
             .unwrap();
-        assert_eq!(p.to_pixel(cx, cy), (px, py), "corner ({x}, {y}, -1)");
+        let viewport = Viewport {
+            half_width: 250,
+            half_height: 250,
+            bounds: Bounds::unbounded(),
+        };
+        let vertex = ScreenVertex {
+            x: cx,
+            y: cy,
+            depth: zinv,
+            varying: Nothing {},
+        };
+        let pixel = to_pixel(vertex, &viewport);
+        assert_eq!((pixel.x, pixel.y), (px, py), "corner ({x}, {y}, -1)");
         assert!((zinv - 1.0 / 2.001).abs() < 1e-7);
     }
     // In the wireframe the front edges are the lines x = 1, x = 499, y = 1, y = 499.
@@ -60,7 +76,7 @@ fn the_front_edges_of_the_box_land_on_the_image_borders() {
 fn points_are_exactly_the_projected_vertices() {
     let frame = render(Points, false);
     let expected: BTreeSet<(i64, i64)> = cornell_box()
-        .iter()
+        .triangles()
         .flat_map(|t| t.vertices())
         .map(project_f64)
         .collect();

@@ -7,7 +7,7 @@
 
 mod common;
 use common::temp_dir;
-use rasterlab::image_io::read_rgb_png;
+use rasterlab::app::image_io::read_rgb_png;
 use std::path::Path;
 use std::process::Command;
 

@@ -2,8 +2,7 @@
 #![allow(dead_code)]
 
 use rasterlab::app::{self, Settings};
-use rasterlab::render::Frame;
-use rasterlab::{StageName, View};
+use rasterlab::{cornell_box, Figure, Frame, StageName};
 use std::path::PathBuf;
 
 /// The 8-bit value of a linear colour channel as the figures write it.
@@ -23,7 +22,13 @@ pub const CYAN: [u8; 3] = [38, 191, 191];
 pub const WHITE: [u8; 3] = [191, 191, 191];
 
 pub fn render(stage: StageName, affine: bool) -> Frame {
-    app::render(View { stage, affine }, &Settings::default(), None).0
+    app::render(
+        Figure { stage, affine },
+        &cornell_box(),
+        &Settings::default(),
+        None,
+    )
+    .0
 }
 
 /// Pixels whose colour in the `depth` figure is `color` and whose 7x7

@@ -2,21 +2,17 @@
 //! draw time, across image sizes and mesh densities, as a table, a CSV file and
 //! an error-against-time plot.
 
-use crate::app::Settings;
-use crate::camera::Camera;
-use crate::image_io::WriteError;
-use crate::metrics::{
+use crate::measure::figure::{Figure, StageName};
+use crate::measure::metrics::{
     differing_fraction, edge_pixels_within_one_pixel, image_error, interior_mask,
     points_within_one_pixel, ImageError,
 };
-use crate::plot::{Canvas, LogLog, BLACK, DARK};
-use crate::raytrace::{raytrace, Options, Shading, Traced};
-use crate::render::Frame;
-use crate::scene::{cornell_box, subdivide, Triangle};
-use crate::stage::{StageName, View};
-use crate::timing::{time_runs, Timing};
+use crate::measure::plot::{Canvas, LogLog, BLACK, DARK};
+use crate::measure::raytrace::{raytrace, Options, Shading, Traced};
+use crate::measure::timing::{time_runs, Timing};
+use crate::pipeline::{Camera, Frame, Light, Mesh, Uniforms};
+use crate::scene::{cornell_box, subdivide};
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
 
 /// What one row measures against the reference.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -110,18 +106,15 @@ struct Reference {
 
 fn camera_for(size: u32) -> Camera {
     // The same view at every size: f scales with the image.
-    Settings {
-        width: size,
-        height: size,
+    Camera {
         focal: size as f32,
-        ..Settings::default()
+        ..Camera::handout(size, size)
     }
-    .camera()
 }
 
-fn reference(scene: &[Triangle], size: u32, runs: usize) -> Reference {
+fn reference(scene: &Mesh, size: u32, runs: usize) -> Reference {
     let camera = camera_for(size);
-    let light = Settings::default().light();
+    let light = Light::handout();
     let lit_options = Options::default();
     let mut lit = raytrace(scene, &camera, &light, &lit_options);
     let timing = time_runs(runs, || {
@@ -142,9 +135,9 @@ fn reference(scene: &[Triangle], size: u32, runs: usize) -> Reference {
 }
 
 fn measure(
-    view: View,
-    base: &[Triangle],
-    scene: &[Triangle],
+    view: Figure,
+    base: &Mesh,
+    scene: &Mesh,
     camera: &Camera,
     frame: &Frame,
     r: &Reference,
@@ -174,13 +167,16 @@ fn measure(
 /// Measures everything in `plan`, printing progress to `progress`.
 pub fn measure_all(plan: &Plan, mut progress: impl FnMut(&str)) -> Vec<Row> {
     let base = cornell_box();
-    let light = Settings::default().light();
+    let uniforms = Uniforms {
+        light: Light::handout(),
+    };
     let mut rows = Vec::new();
     let mut sizes = plan.sizes.clone();
     if !sizes.contains(&plan.k_size) {
         sizes.push(plan.k_size);
     }
-    let total = sizes.len() * (1 + View::FIGURES.len()) + (plan.ks.len() - 1) * View::FIGURES.len();
+    let total =
+        sizes.len() * (1 + Figure::FIGURES.len()) + (plan.ks.len() - 1) * Figure::FIGURES.len();
     let mut done = 0;
     let mut step = |what: &str, ms: f64, progress: &mut dyn FnMut(&str)| {
         done += 1;
@@ -194,7 +190,7 @@ pub fn measure_all(plan: &Plan, mut progress: impl FnMut(&str)) -> Vec<Row> {
             stage: "raytrace".into(),
             size,
             k: 1,
-            triangles: base.len(),
+            triangles: base.faces.len(),
             timing: r.timing,
             speedup: 1.0,
             metric: Metric::Light {
@@ -207,17 +203,19 @@ pub fn measure_all(plan: &Plan, mut progress: impl FnMut(&str)) -> Vec<Row> {
         for &k in ks {
             let scene = subdivide(&base, k);
             let camera = camera_for(size);
-            for view in View::FIGURES {
-                let mut rasterizer = view.rasterizer(light);
+            for view in Figure::FIGURES {
+                let mut pipeline = view.pipeline();
                 let mut frame = Frame::default();
-                rasterizer.draw(&scene, &camera, &mut frame); // warm-up
-                let timing = time_runs(plan.runs, || rasterizer.draw(&scene, &camera, &mut frame));
+                pipeline.render(&scene, &camera, &uniforms, &mut frame); // warm-up
+                let timing = time_runs(plan.runs, || {
+                    pipeline.render(&scene, &camera, &uniforms, &mut frame)
+                });
                 let metric = measure(view, &base, &scene, &camera, &frame, &r, k);
                 let row = Row {
                     stage: view.label(),
                     size,
                     k,
-                    triangles: scene.len(),
+                    triangles: scene.faces.len(),
                     timing,
                     speedup: rt_ms / (timing.median.as_secs_f64() * 1e3),
                     metric,
@@ -400,7 +398,7 @@ const STAGE_COLORS: [(&str, u32); 4] = [
 /// `error-vs-time.png`: interior RMSE (log) against median time (log). Points for
 /// each lit stage and size; lines for vertex-light and affine pixel-light as the
 /// mesh gets denser; an error of zero is drawn on a labelled floor.
-pub fn plot(rows: &[Row], plan: &Plan, path: &Path) -> Result<(), WriteError> {
+pub fn plot(rows: &[Row], plan: &Plan) -> Frame {
     let lit: Vec<&Row> = rows
         .iter()
         .filter(|r| r.interior_rmse().is_some())
@@ -508,27 +506,5 @@ pub fn plot(rows: &[Row], plan: &Plan, path: &Path) -> Result<(), WriteError> {
         c.text((lx, ly), line, 2, DARK);
         ly += 22;
     }
-    c.save(path)
-}
-
-/// Everything `rasterlab report` writes: the three file paths.
-pub fn write_report(
-    rows: &[Row],
-    plan: &Plan,
-    dir: &Path,
-    machine: &str,
-) -> Result<Vec<PathBuf>, WriteError> {
-    std::fs::create_dir_all(dir).map_err(|e| WriteError {
-        path: dir.to_path_buf(),
-        reason: e.to_string(),
-    })?;
-    let md = dir.join("report.md");
-    let csv_path = dir.join("report.csv");
-    let png = dir.join("error-vs-time.png");
-    let mut text = markdown(rows, plan, machine);
-    text.push_str("\n![Error against time](error-vs-time.png)\n");
-    crate::image_io::write_text(&md, &text)?;
-    crate::image_io::write_text(&csv_path, &csv(rows))?;
-    plot(rows, plan, &png)?;
-    Ok(vec![md, csv_path, png])
+    c.frame
 }

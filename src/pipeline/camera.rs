@@ -1,7 +1,8 @@
 //! The pinhole camera of the handout's section 1: world to camera space by
-//! `P' = (P - C) R` (eq. 8) and the projection `x = f X/Z + W/2` (eq. 3, 4),
-//! truncated to whole pixels as the handout's `VertexShader` does.
+//! `P' = (P - C) R` (eq. 8) and the projection `x = f X/Z` (eq. 3, 4) relative to
+//! the screen centre; the rasterizer places that on a pixel.
 
+use super::clip::Rect;
 use glam::Vec3;
 
 /// Where the camera is, where it looks and how it projects.
@@ -55,16 +56,14 @@ impl Camera {
             position: self.position,
             axes: self.axes(),
             focal: self.focal,
-            half_width: (self.width / 2) as i32,
-            half_height: (self.height / 2) as i32,
         }
     }
 
     /// The screen's pixels in the screen-centred coordinates of [`Projection::project_centred`]:
     /// a point there truncates onto the screen only inside this rectangle.
-    pub fn screen_rect(&self) -> crate::clip::Rect {
+    pub fn screen_rect(&self) -> Rect {
         let (hw, hh) = ((self.width / 2) as f32, (self.height / 2) as f32);
-        crate::clip::Rect {
+        Rect {
             left: -hw,
             top: -hh,
             right: self.width as f32 - hw,
@@ -84,8 +83,6 @@ pub struct Projection {
     position: Vec3,
     axes: [Vec3; 3],
     focal: f32,
-    half_width: i32,
-    half_height: i32,
 }
 
 impl Projection {
@@ -107,14 +104,6 @@ impl Projection {
         let x = self.focal * camera_space.x * zinv;
         let y = self.focal * camera_space.y * zinv;
         (zinv.is_finite() && x.is_finite() && y.is_finite()).then_some((x, y, zinv))
-    }
-
-    /// The handout's rounding: truncate toward zero, then add the half size. The
-    /// core only calls it inside the guard band (`render::GUARD_BAND`), far inside
-    /// the range of `i32`.
-    #[inline]
-    pub fn to_pixel(&self, x: f32, y: f32) -> (i32, i32) {
-        (x as i32 + self.half_width, y as i32 + self.half_height)
     }
 }
 

@@ -1,8 +1,8 @@
 //! How far a stage's image is from the reference, in numbers a student can compare.
 
-use crate::camera::{Camera, Projection};
-use crate::render::{unpack, Frame};
-use crate::scene::Triangle;
+use crate::pipeline::camera::Projection;
+use crate::pipeline::target::unpack;
+use crate::pipeline::{Camera, Frame, Mesh, Triangle};
 
 /// Error of an image against a reference, in 8-bit units over all three channels.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -70,13 +70,14 @@ pub fn differing_fraction(image: &Frame, reference: &Frame, mask: Option<&[bool]
 /// Near edges the rasterizer and the ray tracer sample differently (truncation
 /// versus pixel centres), so errors there say little about shading.
 pub fn interior_mask(
-    scene: &[Triangle],
+    mesh: &Mesh,
     hit: &[Option<u32>],
     width: u32,
     height: u32,
     margin: u32,
 ) -> Vec<bool> {
     // Two triangles of one wall are one surface: name surfaces by their first triangle.
+    let scene: Vec<Triangle> = mesh.triangles().collect();
     let surface: Vec<usize> = scene
         .iter()
         .map(|t| {
@@ -116,15 +117,11 @@ fn exact_projection(camera: &Camera, p: &Projection, v: glam::Vec3) -> Option<(f
 /// many are drawn within one pixel of where the exact projection `f X/Z + W/2`
 /// puts them: the pixel (x, y) covers [x, x + 1) x [y, y + 1), and counts if its
 /// centre is within 1 of the exact point on both axes. Returns (within, total).
-pub fn points_within_one_pixel(
-    scene: &[Triangle],
-    camera: &Camera,
-    frame: &Frame,
-) -> (usize, usize) {
+pub fn points_within_one_pixel(mesh: &Mesh, camera: &Camera, frame: &Frame) -> (usize, usize) {
     let (w, h) = (camera.width as f64, camera.height as f64);
     let p = camera.projection();
     let (mut within, mut total) = (0, 0);
-    for v in scene.iter().flat_map(|t| t.vertices()) {
+    for v in mesh.triangles().flat_map(|t| t.vertices()) {
         let Some((ex, ey)) = exact_projection(camera, &p, v) else {
             continue;
         };
@@ -149,15 +146,11 @@ pub fn points_within_one_pixel(
 
 /// Of the lit pixels of a wireframe, how many have their centre within one pixel
 /// of an exactly projected edge. Returns (within, total).
-pub fn edge_pixels_within_one_pixel(
-    scene: &[Triangle],
-    camera: &Camera,
-    frame: &Frame,
-) -> (usize, usize) {
+pub fn edge_pixels_within_one_pixel(mesh: &Mesh, camera: &Camera, frame: &Frame) -> (usize, usize) {
     let p = camera.projection();
     let exact = |v| exact_projection(camera, &p, v);
-    let segments: Vec<((f64, f64), (f64, f64))> = scene
-        .iter()
+    let segments: Vec<((f64, f64), (f64, f64))> = mesh
+        .triangles()
         .flat_map(|t| {
             let v = t.vertices();
             [(v[0], v[1]), (v[1], v[2]), (v[2], v[0])]
@@ -223,13 +216,14 @@ mod tests {
             world(199.2, 250.5),
             glam::Vec3::ONE,
         );
-        let frame = crate::stage::View::of(crate::stage::StageName::Points).render(
-            &[tri],
-            &camera,
-            crate::light::Light::handout(),
-        );
+        let mesh = Mesh::from_triangles(&[tri]);
+        let uniforms = crate::pipeline::Uniforms {
+            light: crate::pipeline::Light::handout(),
+        };
+        let frame = crate::measure::figure::Figure::of(crate::measure::figure::StageName::Points)
+            .render(&mesh, &camera, &uniforms);
         assert_eq!(frame.color.iter().filter(|&&c| c != 0).count(), 3);
-        assert_eq!(points_within_one_pixel(&[tri], &camera, &frame), (2, 3));
+        assert_eq!(points_within_one_pixel(&mesh, &camera, &frame), (2, 3));
     }
 
     #[test]

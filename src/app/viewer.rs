@@ -1,14 +1,14 @@
 //! `rasterlab view`: the handout's interactive program, a window that redraws the
 //! scene every frame from the current camera and light (its `Update` and `Draw`
-//! loop). Keys are read through [`crate::controls`], so a key script replays the
+//! loop). Keys are read through [`super::controls`], so a key script replays the
 //! same way a person's key presses do.
 
-use crate::app::Settings;
-use crate::controls::{self, action, pressed, Action, Controls, Key, MouseLook};
-use crate::image_io::write_png;
-use crate::render::{Draw, Frame};
+use super::controls::{self, action, pressed, Action, Controls, Key, MouseLook};
+use super::image_io::write_png;
+use super::Settings;
+use crate::measure::figure::Figure;
+use crate::pipeline::{Frame, Render};
 use crate::scene::cornell_box;
-use crate::stage::View;
 use std::collections::VecDeque;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -17,7 +17,7 @@ use std::time::{Duration, Instant};
 #[derive(Clone, Debug)]
 pub struct Options {
     pub settings: Settings,
-    pub view: View,
+    pub view: Figure,
     /// Quit after this many frames.
     pub frames: Option<u64>,
     /// Save the last frame here when quitting.
@@ -42,7 +42,7 @@ pub struct Summary {
     /// Median time spent drawing.
     pub draw_median: Duration,
     pub settings: Settings,
-    pub view: View,
+    pub view: Figure,
 }
 
 impl Summary {
@@ -54,7 +54,7 @@ impl Summary {
 
 /// `rasterlab <stage> [--affine] --size .. --camera ..`: every setting, written so
 /// that it parses back to the same f32 values.
-pub fn command_for(view: View, s: &Settings) -> String {
+pub fn command_for(view: Figure, s: &Settings) -> String {
     let v = |v: glam::Vec3| format!("{},{},{}", v.x, v.y, v.z);
     format!(
         "rasterlab {}{} --size {}x{} --focal {} --camera {} --yaw {} --pitch {} --light {} --light-power {} --indirect {}",
@@ -70,7 +70,7 @@ pub fn command_for(view: View, s: &Settings) -> String {
         s.light_power,
         s.indirect
     ) + &if s.clip {
-        if s.near == crate::camera::DEFAULT_NEAR {
+        if s.near == crate::pipeline::camera::DEFAULT_NEAR {
             String::new()
         } else {
             format!(" --near {}", s.near)
@@ -85,11 +85,11 @@ fn median(samples: impl Iterator<Item = Duration>) -> Duration {
     if v.is_empty() {
         Duration::ZERO
     } else {
-        crate::timing::summarize(v).median
+        crate::measure::timing::summarize(v).median
     }
 }
 
-fn title(view: View, frame_times: &VecDeque<Duration>, draw: Duration) -> String {
+fn title(view: Figure, frame_times: &VecDeque<Duration>, draw: Duration) -> String {
     let interpolation = if !view.stage.interpolates() {
         "no interpolation"
     } else if view.affine {
@@ -145,7 +145,7 @@ fn to_key(k: minifb::Key) -> Option<Key> {
 }
 
 /// The first `rasterlab-<stage>-N.png` in the current folder that does not exist.
-fn free_capture_path(view: View) -> PathBuf {
+fn free_capture_path(view: Figure) -> PathBuf {
     let stem = view.label().replace(" --", "-");
     (1..)
         .map(|n| PathBuf::from(format!("rasterlab-{stem}-{n}.png")))
@@ -184,7 +184,7 @@ pub fn run(options: Options) -> Result<Summary, String> {
     let controls = Controls::default();
     let mut settings = options.settings;
     let mut view = options.view;
-    let mut rasterizer: Box<dyn Draw> = view.rasterizer(settings.light());
+    let mut pipeline: Box<dyn Render> = view.pipeline();
     let mut frame = Frame::default();
     let mut held_before: Vec<Key> = Vec::new();
     let mut mouse = MouseLook::default();
@@ -223,11 +223,11 @@ pub fn run(options: Options) -> Result<Summary, String> {
             match action(key) {
                 Some(Action::Show(v)) => {
                     view = v;
-                    rasterizer = view.rasterizer(settings.light());
+                    pipeline = view.pipeline();
                 }
                 Some(Action::TogglePerspective) => {
                     view = controls::toggle_perspective(view);
-                    rasterizer = view.rasterizer(settings.light());
+                    pipeline = view.pipeline();
                 }
                 Some(Action::Save) => save(&frame, &free_capture_path(view))?,
                 Some(Action::Help) => eprintln!("{}", controls::HELP),
@@ -248,9 +248,8 @@ pub fn run(options: Options) -> Result<Summary, String> {
             controls.apply_mouse(dx, dy, &mut settings);
         }
 
-        rasterizer.set_light(settings.light());
         let draw_start = Instant::now();
-        rasterizer.draw(&scene, &settings.camera(), &mut frame);
+        pipeline.render(&scene, &settings.camera(), &settings.uniforms(), &mut frame);
         let draw = draw_start.elapsed();
         all_draws.push(draw);
         window
@@ -276,7 +275,7 @@ pub fn run(options: Options) -> Result<Summary, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::stage::StageName;
+    use crate::measure::figure::StageName;
 
     #[test]
     fn keys_map_from_the_window_library() {
@@ -295,7 +294,7 @@ mod tests {
             camera: glam::Vec3::new(-0.1, 0.2, -2.9),
             ..Settings::default()
         };
-        let view = View {
+        let view = Figure {
             stage: StageName::PixelLight,
             affine: true,
         };

@@ -4,19 +4,22 @@
 //! each drawn by the core with every pixel checked for NaN and infinity, compared
 //! with the ray tracer where that means something, and timed.
 
-use crate::camera::Camera;
-use crate::interpolate::{Pixel, Steps};
-use crate::light::Light;
-use crate::metrics::{differing_fraction, image_error, interior_mask};
-use crate::raytrace::{self, raytrace, Shading};
-use crate::render::{Frame, Rasterizer, WithStage};
-use crate::report::INTERIOR_MARGIN;
-use crate::scene::{cornell_box, Triangle};
-use crate::stage::{Stage, StageName, View};
-use crate::timing::time_runs;
+use crate::measure::figure::{Figure, StageName, WithStage};
+use crate::measure::metrics::{differing_fraction, image_error, interior_mask};
+use crate::measure::raytrace::{self, raytrace, Shading};
+use crate::measure::report::INTERIOR_MARGIN;
+use crate::measure::timing::time_runs;
+use crate::pipeline::interpolate::{Pixel, Steps};
+use crate::pipeline::mesh::Vertex;
+use crate::pipeline::stage::{Primitive, Surface};
+use crate::pipeline::{
+    Camera, Frame, Interpolation, Light, Mesh, Pipeline, Render, Stage, Triangle, Uniforms,
+};
+use crate::scene::cornell_box;
 use glam::Vec3;
 use std::cell::Cell;
 use std::fmt::Write as _;
+use std::marker::PhantomData;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
 thread_local! {
@@ -29,50 +32,47 @@ fn check(ok: bool) {
     }
 }
 
-/// A stage that counts every non-finite 1/z and colour it produces.
-struct Checked<S>(S);
+/// A stage that counts every non-finite colour its pixel shader produces.
+struct Checked<S>(PhantomData<S>);
 
 impl<S: Stage> Stage for Checked<S> {
     type Varying = S::Varying;
-    type Attributes = S::Attributes;
-    const PRIMITIVE: crate::stage::Primitive = S::PRIMITIVE;
-    const DEPTH_BUFFER: bool = S::DEPTH_BUFFER;
+    const PRIMITIVE: Primitive = S::PRIMITIVE;
+    const DEPTH_TEST: bool = S::DEPTH_TEST;
 
-    fn vertex_shader(&self, world: Vec3, tri: &Triangle) -> S::Attributes {
-        self.0.vertex_shader(world, tri)
+    fn vertex_shader(vertex: &Vertex, surface: &Surface, uniforms: &Uniforms) -> S::Varying {
+        S::vertex_shader(vertex, surface, uniforms)
     }
-    fn to_varying(&self, a: S::Attributes, zinv: f32) -> S::Varying {
-        self.0.to_varying(a, zinv)
-    }
-    fn zinv(v: &S::Varying) -> f32 {
-        let z = S::zinv(v);
-        check(z.is_finite());
-        z
-    }
-    fn pixel_shader(&self, v: &S::Varying, tri: &Triangle) -> Vec3 {
-        let c = self.0.pixel_shader(v, tri);
+
+    fn pixel_shader(varying: &S::Varying, surface: &Surface, uniforms: &Uniforms) -> Vec3 {
+        let c = S::pixel_shader(varying, surface, uniforms);
         check(c.is_finite());
         c
     }
 }
 
-/// Draws a scene with the stage wrapped in [`Checked`]: the frame, how many
-/// non-finite values the first draw produced, and the median time in ms.
+/// Draws a scene through the pipeline with the stage wrapped in [`Checked`]: the
+/// frame, how many non-finite colours the first draw shaded plus non-finite
+/// values it left in the depth buffer, and the median time in ms.
 struct DrawChecked<'a> {
-    scene: &'a [Triangle],
+    scene: &'a Mesh,
     camera: &'a Camera,
+    uniforms: &'a Uniforms,
     runs: usize,
 }
 
 impl WithStage for DrawChecked<'_> {
     type Output = (Frame, u64, f64);
-    fn with<S: Stage + 'static>(self, stage: S) -> (Frame, u64, f64) {
-        let mut r = Rasterizer::new(Checked(stage));
+    fn with<S: Stage, I: Interpolation>(self) -> (Frame, u64, f64) {
+        let mut pipeline = Pipeline::<Checked<S>, I>::new();
         let mut frame = Frame::default();
         NON_FINITE.with(|n| n.set(0));
-        r.draw(self.scene, self.camera, &mut frame);
-        let bad = NON_FINITE.with(|n| n.get());
-        let t = time_runs(self.runs, || r.draw(self.scene, self.camera, &mut frame));
+        pipeline.render(self.scene, self.camera, self.uniforms, &mut frame);
+        let depth = frame.depth.iter().filter(|z| !z.is_finite()).count() as u64;
+        let bad = NON_FINITE.with(|n| n.get()) + depth;
+        let t = time_runs(self.runs, || {
+            pipeline.render(self.scene, self.camera, self.uniforms, &mut frame)
+        });
         (frame, bad, t.median.as_secs_f64() * 1e3)
     }
 }
@@ -94,10 +94,10 @@ pub enum Check {
 #[derive(Clone, Debug)]
 pub struct Case {
     pub name: String,
-    pub scene: Vec<Triangle>,
+    pub scene: Mesh,
     pub camera: Camera,
     pub light: Light,
-    pub view: View,
+    pub view: Figure,
     pub check: Check,
 }
 
@@ -151,21 +151,25 @@ pub const LIT_BOUND: f64 = 1.0;
 
 /// The named catalogue.
 pub fn catalogue(quick: bool) -> Vec<Case> {
-    let box_ = cornell_box();
+    let box_: Vec<Triangle> = cornell_box().triangles().collect();
     let light = Light::handout();
-    let pixel = View::of(StageName::PixelLight);
+    let pixel = Figure::of(StageName::PixelLight);
     let mut cases = Vec::new();
-    let mut add =
-        |name: &str, scene: &[Triangle], camera: Camera, light: Light, view: View, check: Check| {
-            cases.push(Case {
-                name: name.into(),
-                scene: scene.to_vec(),
-                camera,
-                light,
-                view,
-                check,
-            });
-        };
+    let mut add = |name: &str,
+                   scene: &[Triangle],
+                   camera: Camera,
+                   light: Light,
+                   view: Figure,
+                   check: Check| {
+        cases.push(Case {
+            name: name.into(),
+            scene: Mesh::from_triangles(scene),
+            camera,
+            light,
+            view,
+            check,
+        });
+    };
     // Camera poses inside and through the box.
     add(
         "inside, centre, looking at the back wall",
@@ -266,7 +270,7 @@ pub fn catalogue(quick: bool) -> Vec<Case> {
             &box_,
             unclipped,
             light,
-            View::of(stage),
+            Figure::of(stage),
             Check::Safety,
         );
     }
@@ -317,7 +321,7 @@ pub fn catalogue(quick: bool) -> Vec<Case> {
                 &[t],
                 Camera::handout(500, 500),
                 light,
-                View::of(stage),
+                Figure::of(stage),
                 Check::Safety,
             );
         }
@@ -355,7 +359,7 @@ pub fn catalogue(quick: bool) -> Vec<Case> {
             &box_,
             camera,
             light,
-            View::of(StageName::Depth),
+            Figure::of(StageName::Depth),
             Check::Measure,
         );
     }
@@ -392,7 +396,7 @@ pub fn catalogue(quick: bool) -> Vec<Case> {
         &box_,
         Camera::handout(500, 500),
         at(Vec3::new(1.0, -1.0, 1.0), 1.1),
-        View::of(StageName::VertexLight),
+        Figure::of(StageName::VertexLight),
         Check::Safety,
     );
 
@@ -454,15 +458,40 @@ pub fn catalogue(quick: bool) -> Vec<Case> {
     cases
 }
 
+/// Runs every case of the catalogue, `runs` timed draws each, telling `progress`
+/// about each as it finishes.
+pub fn run_all(quick: bool, mut progress: impl FnMut(&str)) -> Vec<Outcome> {
+    let cases = catalogue(quick);
+    let runs = if quick { 1 } else { 3 };
+    let mut outcomes = Vec::new();
+    for (i, case) in cases.iter().enumerate() {
+        let o = run(case, runs);
+        progress(&format!(
+            "[{:>2}/{}] {} ({}): {}",
+            i + 1,
+            cases.len(),
+            o.name,
+            o.stage,
+            if o.pass { "ok" } else { "FAIL" }
+        ));
+        outcomes.push(o);
+    }
+    outcomes
+}
+
+/// The spans `rasterlab stress` measures drift over.
+pub const DRIFT_SPANS: [usize; 7] = [1_000, 4_096, 5_000, 32_000, 100_000, 1_000_000, 10_000_000];
+
 /// Draws a case, checks it, and compares it with the ray tracer if it has a bound.
 pub fn run(case: &Case, runs: usize) -> Outcome {
     let drawn = catch_unwind(AssertUnwindSafe(|| {
         let draw = DrawChecked {
             scene: &case.scene,
             camera: &case.camera,
+            uniforms: &Uniforms { light: case.light },
             runs,
         };
-        case.view.with_stage(case.light, draw)
+        case.view.with_stage(draw)
     }));
     let mut outcome = Outcome {
         name: case.name.clone(),
@@ -545,9 +574,15 @@ pub fn interpolation_drift(n: usize) -> (f64, f64) {
 /// The largest y error of [`Steps`] itself over such a span, in pixels.
 pub fn steps_drift(n: usize) -> f64 {
     let rise = (n / 3) as f32;
-    Steps::new(Pixel::new(0, 0, 0.0f32), Pixel::new(0, 0, rise), n)
+    let at = |varying: f32| Pixel {
+        x: 0,
+        y: 0,
+        depth: 0.0,
+        varying,
+    };
+    Steps::new(at(0.0), at(rise), n)
         .enumerate()
-        .map(|(i, p)| (p.v as f64 - rise as f64 * i as f64 / (n - 1) as f64).abs())
+        .map(|(i, p)| (p.varying as f64 - rise as f64 * i as f64 / (n - 1) as f64).abs())
         .fold(0.0, f64::max)
 }
 

@@ -12,7 +12,7 @@
 //! Polygons live in a fixed-size [`Polygon`]: one triangle cut by one plane has at
 //! most 4 corners, then by the band's 4 sides at most 8. Nothing is allocated.
 
-use crate::interpolate::Varying;
+use super::interpolate::Varying;
 use glam::Vec3;
 
 /// The most corners a clipped triangle can have.
@@ -63,26 +63,28 @@ impl<T: Copy + Default> Polygon<T> {
     }
 }
 
-/// A vertex in camera space with the stage's attributes (linear in 3D).
+/// A vertex in camera space with the stage's per-vertex struct (linear in 3D).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct CameraVertex<A> {
-    pub pos: Vec3,
-    pub a: A,
+pub struct CameraVertex<V> {
+    pub position: Vec3,
+    pub varying: V,
 }
 
-/// A projected vertex before it is truncated to a pixel: `x = f X/Z` and
-/// `y = f Y/Z` relative to the screen centre, and what is interpolated on screen.
+/// A projected vertex before it is placed on a pixel: `x = f X/Z` and
+/// `y = f Y/Z` relative to the screen centre, and what is interpolated on screen
+/// (depth and the varying, as the interpolation encodes them).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ScreenVertex<V> {
     pub x: f32,
     pub y: f32,
-    pub v: V,
+    pub depth: f32,
+    pub varying: V,
 }
 
-fn lerp_camera<A: Varying>(p: CameraVertex<A>, q: CameraVertex<A>, t: f32) -> CameraVertex<A> {
+fn lerp_camera<V: Varying>(p: CameraVertex<V>, q: CameraVertex<V>, t: f32) -> CameraVertex<V> {
     CameraVertex {
-        pos: p.pos + (q.pos - p.pos) * t,
-        a: p.a.add(q.a.sub(p.a).scale(t)),
+        position: p.position + (q.position - p.position) * t,
+        varying: p.varying + (q.varying - p.varying) * t,
     }
 }
 
@@ -90,7 +92,8 @@ fn lerp_screen<V: Varying>(p: ScreenVertex<V>, q: ScreenVertex<V>, t: f32) -> Sc
     ScreenVertex {
         x: p.x + (q.x - p.x) * t,
         y: p.y + (q.y - p.y) * t,
-        v: p.v.add(q.v.sub(p.v).scale(t)),
+        depth: p.depth + (q.depth - p.depth) * t,
+        varying: p.varying + (q.varying - p.varying) * t,
     }
 }
 
@@ -117,23 +120,20 @@ fn clip_polygon<T: Copy + Default>(
 }
 
 /// The part of a polygon at `z >= near`.
-pub fn clip_near<A: Varying>(
-    input: &Polygon<CameraVertex<A>>,
+pub fn clip_near<V: Varying>(
+    input: &Polygon<CameraVertex<V>>,
     near: f32,
-) -> Polygon<CameraVertex<A>> {
-    if input.as_slice().iter().all(|c| c.pos.z >= near) {
-        return *input;
-    }
-    clip_polygon(input, |c| c.pos.z - near, lerp_camera)
+) -> Polygon<CameraVertex<V>> {
+    clip_polygon(input, |c| c.position.z - near, lerp_camera)
 }
 
 /// The part of a segment at `z >= near`, if any.
-pub fn clip_segment_near<A: Varying>(
-    p: CameraVertex<A>,
-    q: CameraVertex<A>,
+pub fn clip_segment_near<V: Varying>(
+    p: CameraVertex<V>,
+    q: CameraVertex<V>,
     near: f32,
-) -> Option<(CameraVertex<A>, CameraVertex<A>)> {
-    let (dp, dq) = (p.pos.z - near, q.pos.z - near);
+) -> Option<(CameraVertex<V>, CameraVertex<V>)> {
+    let (dp, dq) = (p.position.z - near, q.position.z - near);
     match (dp >= 0.0, dq >= 0.0) {
         (true, true) => Some((p, q)),
         (false, false) => None,
@@ -214,8 +214,8 @@ mod tests {
 
     fn cv(x: f32, y: f32, z: f32, a: f32) -> CameraVertex<f32> {
         CameraVertex {
-            pos: Vec3::new(x, y, z),
-            a,
+            position: Vec3::new(x, y, z),
+            varying: a,
         }
     }
 
@@ -230,14 +230,16 @@ mod tests {
         let out = clip_near(&tri, 1.0);
         let c = out.as_slice();
         assert_eq!(c.len(), 4);
-        assert!(c.iter().all(|v| v.pos.z >= 1.0 - 1e-6));
+        assert!(c.iter().all(|v| v.position.z >= 1.0 - 1e-6));
         // The cut on the edge to (1, 0, 3) is halfway: attribute 2, x 0.5.
-        assert!(c.iter().any(
-            |v| (v.pos - Vec3::new(0.5, 0.0, 1.0)).length() < 1e-6 && (v.a - 2.0).abs() < 1e-6
-        ));
-        assert!(c.iter().any(
-            |v| (v.pos - Vec3::new(0.0, 0.5, 1.0)).length() < 1e-6 && (v.a - 4.0).abs() < 1e-6
-        ));
+        assert!(c
+            .iter()
+            .any(|v| (v.position - Vec3::new(0.5, 0.0, 1.0)).length() < 1e-6
+                && (v.varying - 2.0).abs() < 1e-6));
+        assert!(c
+            .iter()
+            .any(|v| (v.position - Vec3::new(0.0, 0.5, 1.0)).length() < 1e-6
+                && (v.varying - 4.0).abs() < 1e-6));
         // Wholly behind: nothing; wholly in front: unchanged.
         let behind = Polygon::from_slice(&[
             cv(0.0, 0.0, -1.0, 0.0),
@@ -252,14 +254,19 @@ mod tests {
     fn segments_are_cut_at_the_near_plane() {
         let (p, q) =
             clip_segment_near(cv(0.0, 0.0, 0.0, 0.0), cv(0.0, 4.0, 4.0, 1.0), 1.0).unwrap();
-        assert_eq!(p.pos, Vec3::new(0.0, 1.0, 1.0));
-        assert_eq!(p.a, 0.25);
-        assert_eq!(q.pos.z, 4.0);
+        assert_eq!(p.position, Vec3::new(0.0, 1.0, 1.0));
+        assert_eq!(p.varying, 0.25);
+        assert_eq!(q.position.z, 4.0);
         assert!(clip_segment_near(cv(0.0, 0.0, 0.0, 0.0), cv(0.0, 4.0, 0.5, 1.0), 1.0).is_none());
     }
 
     fn sv(x: f32, y: f32) -> ScreenVertex<f32> {
-        ScreenVertex { x, y, v: x + y }
+        ScreenVertex {
+            x,
+            y,
+            depth: x,
+            varying: x + y,
+        }
     }
 
     #[test]
@@ -277,12 +284,12 @@ mod tests {
             assert!(r.contains(v), "{v:?}");
             // v was x + y at every corner and is interpolated linearly.
             assert!(
-                (v.v - (v.x + v.y)).abs() < 1e-3 * (1.0 + v.v.abs()),
+                (v.varying - (v.x + v.y)).abs() < 1e-3 * (1.0 + v.varying.abs()),
                 "{v:?}"
             );
         }
         let (p, q) = clip_segment_rect(sv(-100.0, 0.0), sv(100.0, 0.0), &r).unwrap();
-        assert_eq!((p.x, q.x, p.v, q.v), (-10.0, 10.0, -10.0, 10.0));
+        assert_eq!((p.x, q.x, p.varying, q.varying), (-10.0, 10.0, -10.0, 10.0));
         assert!(clip_segment_rect(sv(-100.0, 20.0), sv(100.0, 20.0), &r).is_none());
     }
 }

@@ -1,7 +1,7 @@
 //! Writing frames as PNG files, never leaving a half-written file behind: the image
 //! goes to a temporary file beside the target, which is renamed into place.
 
-use crate::render::Frame;
+use crate::pipeline::Frame;
 use std::fmt;
 use std::fs;
 use std::io::{BufWriter, Write};

@@ -2,8 +2,8 @@
 //! light and the stage (the handout's `Update`). No window is needed here, so the
 //! mapping is tested on its own and key scripts replay exactly.
 
-use crate::app::Settings;
-use crate::stage::{StageName, View};
+use super::Settings;
+use crate::measure::figure::{Figure, StageName};
 use glam::Vec3;
 
 /// The keys the viewer reads, independent of the window library.
@@ -44,7 +44,7 @@ impl Key {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Action {
     /// Show one of the seven figures (keys 1 to 7).
-    Show(View),
+    Show(Figure),
     /// Switch between perspective-correct and affine interpolation (p).
     TogglePerspective,
     /// Save the current frame as a PNG (c).
@@ -162,7 +162,7 @@ impl MouseLook {
 /// What pressing `key` asks for, if anything.
 pub fn action(key: Key) -> Option<Action> {
     match key {
-        Key::Char(c @ '1'..='7') => Some(Action::Show(View::FIGURES[c as usize - '1' as usize])),
+        Key::Char(c @ '1'..='7') => Some(Action::Show(Figure::FIGURES[c as usize - '1' as usize])),
         Key::Char('p') => Some(Action::TogglePerspective),
         Key::Char('c') => Some(Action::Save),
         Key::Char('h') => Some(Action::Help),
@@ -172,9 +172,9 @@ pub fn action(key: Key) -> Option<Action> {
 }
 
 /// `view` with interpolation switched, for stages that interpolate; others unchanged.
-pub fn toggle_perspective(view: View) -> View {
+pub fn toggle_perspective(view: Figure) -> Figure {
     if view.stage.interpolates() {
-        View {
+        Figure {
             affine: !view.affine,
             ..view
         }
@@ -183,9 +183,9 @@ pub fn toggle_perspective(view: View) -> View {
     }
 }
 
-/// The stage names `rasterlab view` accepts, as `View`s: the six stages.
-pub fn view_of(stage: StageName, affine: bool) -> View {
-    View {
+/// The stage names `rasterlab view` accepts, as `Figure`s: the six stages.
+pub fn view_of(stage: StageName, affine: bool) -> Figure {
+    Figure {
         stage,
         affine: affine && stage.interpolates(),
     }
@@ -321,11 +321,11 @@ mod tests {
     fn presses_pick_figures_and_actions() {
         assert_eq!(
             action(Key::Char('1')),
-            Some(Action::Show(View::of(StageName::Points)))
+            Some(Action::Show(Figure::of(StageName::Points)))
         );
         assert_eq!(
             action(Key::Char('7')),
-            Some(Action::Show(View {
+            Some(Action::Show(Figure {
                 stage: StageName::PixelLight,
                 affine: true
             }))
@@ -333,8 +333,8 @@ mod tests {
         assert_eq!(action(Key::Char('8')), None);
         assert_eq!(action(Key::Char('p')), Some(Action::TogglePerspective));
         assert_eq!(action(Key::Escape), Some(Action::Quit));
-        assert!(toggle_perspective(View::of(StageName::Depth)).affine);
-        assert!(!toggle_perspective(View::of(StageName::Filled)).affine);
+        assert!(toggle_perspective(Figure::of(StageName::Depth)).affine);
+        assert!(!toggle_perspective(Figure::of(StageName::Filled)).affine);
     }
 
     #[test]

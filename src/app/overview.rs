@@ -2,7 +2,8 @@
 //! glance. Four columns, left to right and top to bottom in the handout's order,
 //! separated by a grey gutter.
 
-use crate::render::{unpack, Frame};
+use crate::pipeline::target::unpack;
+use crate::pipeline::Frame;
 
 /// Gutter between panels, in pixels.
 pub const GUTTER: u32 = 8;

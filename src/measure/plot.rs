@@ -1,12 +1,11 @@
 //! A small log-log chart drawn with our own core: lines from
-//! [`crate::polygon::draw_line`], text from an 8x8 bitmap font (font8x8), written
+//! [`draw_line`], text from an 8x8 bitmap font (font8x8), written
 //! as PNG like every figure. Enough for `report`'s error-against-time plot.
 
-use crate::image_io::{write_png, WriteError};
-use crate::interpolate::Pixel;
-use crate::polygon::{draw_line, Clip};
-use crate::render::Frame;
-use std::path::Path;
+use crate::pipeline::interpolate::Pixel;
+use crate::pipeline::raster::rows::draw_line;
+use crate::pipeline::raster::Bounds;
+use crate::pipeline::Frame;
 
 pub type Rgb = u32;
 pub const BLACK: Rgb = 0x00_00_00;
@@ -16,7 +15,7 @@ pub const DARK: Rgb = 0x55_55_55;
 /// An image to draw lines, markers and text on.
 pub struct Canvas {
     pub frame: Frame,
-    clip: Clip,
+    bounds: Bounds,
 }
 
 impl Canvas {
@@ -25,12 +24,15 @@ impl Canvas {
         frame.color.fill(background);
         Canvas {
             frame,
-            clip: Clip::screen(width, height),
+            bounds: Bounds {
+                x: 0..width as i32,
+                y: 0..height as i32,
+            },
         }
     }
 
     fn put(&mut self, x: i32, y: i32, color: Rgb) {
-        if self.clip.x.contains(&x) && self.clip.y.contains(&y) {
+        if self.bounds.x.contains(&x) && self.bounds.y.contains(&y) {
             self.frame.color[(y as u32 * self.frame.width + x as u32) as usize] = color;
         }
     }
@@ -41,8 +43,8 @@ impl Canvas {
         for o in -(width / 2)..=(width - 1) / 2 {
             let (dx, dy) = if steep { (o, 0) } else { (0, o) };
             let (p, q) = (Pixel::at(a.0 + dx, a.1 + dy), Pixel::at(b.0 + dx, b.1 + dy));
-            let clip = self.clip.clone();
-            draw_line(p, q, &clip, |p| self.put(p.x, p.y, color));
+            let bounds = self.bounds.clone();
+            draw_line(p, q, &bounds, |p| self.put(p.x, p.y, color));
         }
     }
 
@@ -101,10 +103,6 @@ impl Canvas {
     /// Width in pixels of `text` at `scale`.
     pub fn text_width(text: &str, scale: i32) -> i32 {
         text.chars().count() as i32 * 8 * scale
-    }
-
-    pub fn save(&self, path: &Path) -> Result<(), WriteError> {
-        write_png(&self.frame, path)
     }
 }
 

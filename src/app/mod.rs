@@ -1,24 +1,30 @@
-//! What the subcommands do, apart from parsing: build the scene, camera and light
-//! from the settings, draw, time and write files.
+//! The application: what the subcommands do apart from parsing (build the scene,
+//! camera and light from the settings, draw, time and write files), image files,
+//! Figure 1, and the viewer.
 
-use crate::camera::Camera;
-use crate::image_io::{write_png, write_rgb_png, WriteError};
-use crate::interpolate::Pixel;
-use crate::light::Light;
-use crate::overview::overview;
-use crate::polygon::{compute_polygon_rows, Clip, Rows};
-use crate::raytrace;
-use crate::render::Frame;
-use crate::report;
-use crate::scene::{cornell_box, Triangle};
-use crate::stage::View;
-use crate::timing::{time_runs, Timing};
+pub mod controls;
+pub mod image_io;
+pub mod overview;
+pub mod parse;
+pub mod viewer;
+
+use crate::measure::figure::Figure;
+use crate::measure::timing::{time_runs, Timing};
+use crate::measure::{raytrace, report, stress};
+use crate::pipeline::camera::DEFAULT_NEAR;
+use crate::pipeline::interpolate::Pixel;
+use crate::pipeline::raster::rows::{compute_polygon_rows, Rows};
+use crate::pipeline::raster::Bounds;
+use crate::pipeline::{Camera, Frame, Light, Mesh, Uniforms};
+use crate::scene::cornell_box;
 use glam::Vec3;
+use image_io::{write_png, write_rgb_png, write_text, WriteError};
+use overview::overview;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-/// Everything a render depends on besides the stage; the defaults are the course
-/// skeleton's (design notes).
+/// Everything a render depends on besides the stage and the scene; the defaults
+/// are the course skeleton's.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Settings {
     pub width: u32,
@@ -53,7 +59,7 @@ impl Default for Settings {
             light: light.position,
             light_power: light.power.x,
             indirect: light.indirect.x,
-            near: crate::camera::DEFAULT_NEAR,
+            near: DEFAULT_NEAR,
             clip: true,
         }
     }
@@ -79,28 +85,39 @@ impl Settings {
             indirect: Vec3::splat(self.indirect),
         }
     }
+
+    pub fn uniforms(&self) -> Uniforms {
+        Uniforms {
+            light: self.light(),
+        }
+    }
 }
 
-/// Draws `view` of the Cornell box; with `runs`, draws it that many times and
-/// reports the timing (drawing only, no file I/O).
-pub fn render(view: View, settings: &Settings, runs: Option<usize>) -> (Frame, Option<Timing>) {
-    let scene: Vec<Triangle> = cornell_box();
-    let camera = settings.camera();
-    let mut rasterizer = view.rasterizer(settings.light());
+/// Draws `figure` of `mesh`; with `runs`, draws it that many times and reports the
+/// timing (drawing only, no file I/O).
+pub fn render(
+    figure: Figure,
+    mesh: &Mesh,
+    settings: &Settings,
+    runs: Option<usize>,
+) -> (Frame, Option<Timing>) {
+    let (camera, uniforms) = (settings.camera(), settings.uniforms());
+    let mut pipeline = figure.pipeline();
     let mut frame = Frame::default();
-    rasterizer.draw(&scene, &camera, &mut frame);
-    let timing = runs.map(|n| time_runs(n, || rasterizer.draw(&scene, &camera, &mut frame)));
+    pipeline.render(mesh, &camera, &uniforms, &mut frame);
+    let timing =
+        runs.map(|n| time_runs(n, || pipeline.render(mesh, &camera, &uniforms, &mut frame)));
     (frame, timing)
 }
 
-/// Draws `view` and writes it to `out`.
+/// Draws `figure` of the Cornell box and writes it to `out`.
 pub fn render_to_file(
-    view: View,
+    figure: Figure,
     settings: &Settings,
     out: &Path,
     runs: Option<usize>,
 ) -> Result<Option<Timing>, WriteError> {
-    let (frame, timing) = render(view, settings, runs);
+    let (frame, timing) = render(figure, &cornell_box(), settings, runs);
     write_png(&frame, out)?;
     Ok(timing)
 }
@@ -115,11 +132,12 @@ pub fn render_all(settings: &Settings, dir: &Path) -> Result<Vec<PathBuf>, Write
         path: dir.to_path_buf(),
         reason: e.to_string(),
     })?;
+    let mesh = cornell_box();
     let mut written = Vec::new();
     let mut frames = Vec::new();
-    for view in View::FIGURES {
-        let (frame, _) = render(view, settings, None);
-        let path = dir.join(view.figure_file());
+    for figure in Figure::FIGURES {
+        let (frame, _) = render(figure, &mesh, settings, None);
+        let path = dir.join(figure.figure_file());
         write_png(&frame, &path)?;
         written.push(path);
         frames.push(frame);
@@ -134,9 +152,9 @@ pub fn render_all(settings: &Settings, dir: &Path) -> Result<Vec<PathBuf>, Write
 /// `ComputePolygonRows` for a polygon given as pixels, printed as the handout's
 /// test program does: `Start: (x,y). End: (x,y). ` on one line per row.
 pub fn rows_text(vertices: &[(i32, i32)]) -> String {
-    let pixels: Vec<Pixel<()>> = vertices.iter().map(|&(x, y)| Pixel::at(x, y)).collect();
+    let pixels: Vec<_> = vertices.iter().map(|&(x, y)| Pixel::at(x, y)).collect();
     let mut rows = Rows::new();
-    compute_polygon_rows(&pixels, &Clip::unbounded(), &mut rows);
+    compute_polygon_rows(&pixels, &Bounds::unbounded(), &mut rows);
     let mut out = String::new();
     for (l, r) in rows.left.iter().zip(&rows.right) {
         let _ = writeln!(out, "Start: ({},{}). End: ({},{}). ", l.x, l.y, r.x, r.y);
@@ -192,5 +210,30 @@ pub fn report(
         report::Plan::full()
     };
     let rows = report::measure_all(&plan, progress);
-    report::write_report(&rows, &plan, dir, &machine())
+    std::fs::create_dir_all(dir).map_err(|e| WriteError {
+        path: dir.to_path_buf(),
+        reason: e.to_string(),
+    })?;
+    let md = dir.join("report.md");
+    let csv = dir.join("report.csv");
+    let png = dir.join("error-vs-time.png");
+    let mut text = report::markdown(&rows, &plan, &machine());
+    text.push_str("\n![Error against time](error-vs-time.png)\n");
+    write_text(&md, &text)?;
+    write_text(&csv, &report::csv(&rows))?;
+    write_png(&report::plot(&rows, &plan), &png)?;
+    Ok(vec![md, csv, png])
+}
+
+/// `rasterlab stress`: runs the catalogue, progress to `progress`; returns the
+/// tables to print, how many cases failed and how many ran.
+pub fn stress(quick: bool, progress: impl FnMut(&str)) -> (String, usize, usize) {
+    let outcomes = stress::run_all(quick, progress);
+    let text = format!(
+        "{}\nLong spans, largest distance from the exact position:\n\n{}",
+        stress::table(&outcomes),
+        stress::drift_table(&stress::DRIFT_SPANS)
+    );
+    let failed = outcomes.iter().filter(|o| !o.pass).count();
+    (text, failed, outcomes.len())
 }

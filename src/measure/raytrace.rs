@@ -3,10 +3,8 @@
 //! rasterizer ([`Light::reflected`]). Everything the rasterizer's stages are
 //! measured against (`rasterlab report`) comes from here.
 
-use crate::camera::Camera;
-use crate::light::Light;
-use crate::render::{pack, Frame};
-use crate::scene::Triangle;
+use crate::pipeline::target::pack;
+use crate::pipeline::{Camera, Frame, Light, Mesh, Triangle};
 use glam::Vec3;
 
 /// What the reference shows at a hit.
@@ -119,7 +117,9 @@ pub fn trace(
 /// Traces the scene as `camera` sees it: the ray for screen point (sx, sy) goes
 /// through camera-space (sx - W/2, sy - H/2, f), the inverse of the rasterizer's
 /// projection, and pixel (x, y) is sampled at (x + 0.5, y + 0.5).
-pub fn raytrace(scene: &[Triangle], camera: &Camera, light: &Light, options: &Options) -> Traced {
+pub fn raytrace(mesh: &Mesh, camera: &Camera, light: &Light, options: &Options) -> Traced {
+    let scene: Vec<Triangle> = mesh.triangles().collect();
+    let scene = &scene[..];
     let (w, h) = (camera.width, camera.height);
     let [right, down, forward] = camera.axes();
     let (half_w, half_h) = ((w / 2) as f32, (h / 2) as f32);
@@ -218,7 +218,7 @@ mod tests {
         // (-0.33, 0.4, 0.27), meets the floor near (-0.55, 1, 0.92). A ray from just
         // above that point straight down hits the floor; with shadows it gets only
         // the indirect term, 0.5 times the floor's reflectance.
-        let scene = cornell_box();
+        let scene: Vec<Triangle> = cornell_box().triangles().collect();
         let light = Light::handout();
         let eye = Vec3::new(-0.55, 0.5, 0.92);
         let opts = Options {

@@ -4,38 +4,8 @@
 //! L = 555) and then scaled into the cube [-1, 1]^3 with x and y negated, so that y
 //! points down as in the handout's section 1.
 
+use crate::pipeline::{Mesh, Triangle};
 use glam::Vec3;
-
-/// A triangle with one colour (its reflectance) and one normal, as the handout's
-/// `Triangle` struct.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Triangle {
-    pub v0: Vec3,
-    pub v1: Vec3,
-    pub v2: Vec3,
-    pub normal: Vec3,
-    pub color: Vec3,
-}
-
-impl Triangle {
-    /// A triangle whose normal is `normalize((v2 - v0) x (v1 - v0))`, the winding the
-    /// test model uses so that normals point into the room.
-    pub fn new(v0: Vec3, v1: Vec3, v2: Vec3, color: Vec3) -> Self {
-        let normal = (v2 - v0).cross(v1 - v0).normalize_or_zero();
-        Triangle {
-            v0,
-            v1,
-            v2,
-            normal,
-            color,
-        }
-    }
-
-    /// The three corners in drawing order.
-    pub fn vertices(&self) -> [Vec3; 3] {
-        [self.v0, self.v1, self.v2]
-    }
-}
 
 pub const RED: Vec3 = Vec3::new(0.75, 0.15, 0.15);
 pub const YELLOW: Vec3 = Vec3::new(0.75, 0.75, 0.15);
@@ -84,7 +54,11 @@ fn corners(bottom: [[f32; 3]; 4], height: f32) -> [Vec3; 8] {
 
 /// The handout's test model: 30 triangles, in the course skeleton's order
 /// (floor, left wall, right wall, ceiling, back wall, short block, tall block).
-pub fn cornell_box() -> Vec<Triangle> {
+pub fn cornell_box() -> Mesh {
+    Mesh::from_triangles(&cornell_triangles())
+}
+
+fn cornell_triangles() -> Vec<Triangle> {
     let mut t = Vec::with_capacity(30);
     let room = corners(
         [[L, 0.0, 0.0], [0.0, 0.0, 0.0], [L, 0.0, L], [0.0, 0.0, L]],
@@ -135,10 +109,10 @@ pub fn cornell_box() -> Vec<Triangle> {
 /// Splits every triangle into k x k smaller ones on a grid of its barycentric
 /// coordinates, keeping its normal and colour: the same surfaces with k² times the
 /// triangles, for measuring how cost and per-vertex error change with mesh density.
-pub fn subdivide(scene: &[Triangle], k: u32) -> Vec<Triangle> {
+pub fn subdivide(mesh: &Mesh, k: u32) -> Mesh {
     let k = k.max(1);
-    let mut out = Vec::with_capacity(scene.len() * (k * k) as usize);
-    for t in scene {
+    let mut out = Vec::with_capacity(mesh.faces.len() * (k * k) as usize);
+    for t in mesh.triangles() {
         // Corner (i, j) of the grid: v0 + (i/k)(v1 - v0) + (j/k)(v2 - v0), i + j <= k.
         let at = |i: u32, j: u32| {
             let (a, b) = (i as f32 / k as f32, j as f32 / k as f32);
@@ -160,7 +134,7 @@ pub fn subdivide(scene: &[Triangle], k: u32) -> Vec<Triangle> {
             }
         }
     }
-    out
+    Mesh::from_triangles(&out)
 }
 
 #[cfg(test)]
@@ -169,7 +143,7 @@ mod tests {
 
     #[test]
     fn thirty_triangles_inside_the_unit_cube() {
-        let tris = cornell_box();
+        let tris: Vec<Triangle> = cornell_box().triangles().collect();
         assert_eq!(tris.len(), 30);
         for t in &tris {
             for v in t.vertices() {
@@ -181,10 +155,11 @@ mod tests {
 
     #[test]
     fn subdivision_keeps_area_normals_and_winding() {
-        let tris = cornell_box();
+        let mesh = cornell_box();
+        let tris: Vec<Triangle> = mesh.triangles().collect();
         let area = |t: &Triangle| (t.v1 - t.v0).cross(t.v2 - t.v0).length() / 2.0;
         for k in [1, 2, 4] {
-            let sub = subdivide(&tris, k);
+            let sub: Vec<Triangle> = subdivide(&mesh, k).triangles().collect();
             assert_eq!(sub.len(), 30 * (k * k) as usize);
             let (a, b): (f32, f32) = (tris.iter().map(area).sum(), sub.iter().map(area).sum());
             assert!((a - b).abs() < 1e-4 * a, "k = {k}: {a} vs {b}");
@@ -198,7 +173,7 @@ mod tests {
 
     #[test]
     fn normals_point_into_the_room() {
-        let tris = cornell_box();
+        let tris: Vec<Triangle> = cornell_box().triangles().collect();
         // Floor (y = +1 after the flip) faces up, toward -y; back wall (z = 1) faces -z.
         assert!(tris[0].normal.abs_diff_eq(Vec3::new(0.0, -1.0, 0.0), 1e-6));
         assert!(tris[8].normal.abs_diff_eq(Vec3::new(0.0, 0.0, -1.0), 1e-6));

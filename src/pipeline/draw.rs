@@ -1,0 +1,344 @@
+//! The handout's `Draw` and `DrawPolygon`: every face of the mesh goes through the
+//! stage's vertex shader and the camera, is clipped, projected and rasterized, and
+//! every pixel goes through the depth test (for stages that have one) and the
+//! stage's pixel shader into the render target.
+
+use super::camera::{Camera, Projection};
+use super::clip::{
+    clip_near, clip_rect, clip_segment_near, clip_segment_rect, CameraVertex, Polygon, Rect,
+    ScreenVertex,
+};
+use super::interpolate::{Interpolation, Perspective, Pixel, Varying};
+use super::mesh::Mesh;
+use super::raster::{Bounds, Rasterizer, RowRaster, Viewport};
+use super::stage::{Primitive, Stage, Surface, Uniforms};
+use super::target::{pack, Frame, Target};
+use std::marker::PhantomData;
+
+/// How far the guard band reaches beyond each side of the screen, in screen
+/// sizes: primitives are cut there, so none costs more than a few screens.
+pub const GUARD_BAND: f32 = 1.0;
+
+/// A stage `S`, interpolated the way `I` says and rasterized by `R`, with the
+/// scratch buffers it reuses from one triangle and one frame to the next.
+pub struct Pipeline<S: Stage, I: Interpolation = Perspective, R: Rasterizer = RowRaster> {
+    scratch: R::Scratch<S::Varying>,
+    visible: Visible<S::Varying>,
+    types: PhantomData<(S, I)>,
+}
+
+/// The pixels of one triangle that passed the depth test, shaded together once the
+/// triangle is rasterized: the shading loop then runs over plain arrays, which the
+/// compiler vectorises. A triangle covers each pixel once, so the target ends up
+/// exactly as if each pixel were shaded at once.
+struct Visible<V> {
+    index: Vec<usize>,
+    carried: Vec<(f32, V)>,
+    color: Vec<u32>,
+}
+
+impl<S: Stage, I: Interpolation, R: Rasterizer> Default for Pipeline<S, I, R> {
+    fn default() -> Self {
+        Pipeline {
+            scratch: Default::default(),
+            visible: Visible {
+                index: Vec::new(),
+                carried: Vec::new(),
+                color: Vec::new(),
+            },
+            types: PhantomData,
+        }
+    }
+}
+
+impl<S: Stage, I: Interpolation, R: Rasterizer> Pipeline<S, I, R> {
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// The handout's `Draw`: clear the target, then draw every face of `mesh`.
+    ///
+    /// With `camera.near` set, each primitive is clipped at the near plane before
+    /// projection and at a guard band around the screen after it (see `clip`).
+    /// A triangle in full view goes through neither cut, so its pixels are
+    /// exactly the handout's.
+    pub fn draw(&mut self, mesh: &Mesh, camera: &Camera, uniforms: &Uniforms, target: &mut Target) {
+        assert!(
+            !S::DEPTH_TEST || target.depth.is_some(),
+            "a stage with a depth test needs a depth buffer"
+        );
+        target.clear();
+        let screen = Screen::new(camera, target);
+        for face in &mesh.faces {
+            let surface = Surface {
+                normal: face.normal,
+                material: *mesh.material(face),
+            };
+            let corners = [0, 1, 2].map(|k| {
+                let vertex = mesh.vertex(face, k);
+                CameraVertex {
+                    position: screen.projection.to_camera(vertex.position),
+                    varying: S::vertex_shader(&vertex, &surface, uniforms),
+                }
+            });
+            match S::PRIMITIVE {
+                Primitive::Points => {
+                    self.draw_points(&screen, &corners, &surface, uniforms, target)
+                }
+                Primitive::Lines => self.draw_edges(&screen, &corners, &surface, uniforms, target),
+                Primitive::Polygons => {
+                    self.draw_polygon(&screen, &corners, &surface, uniforms, target)
+                }
+            }
+        }
+    }
+
+    /// The handout's `DrawPolygon`: clip, project, rasterize, then the depth test
+    /// and the pixel shader.
+    fn draw_polygon(
+        &mut self,
+        screen: &Screen,
+        corners: &[CameraVertex<S::Varying>; 3],
+        surface: &Surface,
+        uniforms: &Uniforms,
+        target: &mut Target,
+    ) {
+        let mut polygon = Polygon::from_slice(corners);
+        if let Some(n) = screen.near {
+            if corners.iter().any(|c| !in_front(c, n)) {
+                polygon = clip_near(&polygon, n);
+            }
+        }
+        let mut projected = Polygon::default();
+        for &c in polygon.as_slice() {
+            match project::<_, I>(&screen.projection, c) {
+                Some(s) => projected.push(s),
+                None => return, // a corner on the camera plane (only without clipping)
+            }
+        }
+        if off_screen(projected.as_slice(), &screen.rect) {
+            return;
+        }
+        if !projected.as_slice().iter().all(|s| screen.band.contains(s)) {
+            projected = clip_rect(&projected, &screen.band);
+        }
+        let visible = &mut self.visible;
+        visible.index.clear();
+        visible.carried.clear();
+        let (width, first_row) = (target.width as usize, target.rows.start as usize);
+        // Empty unless the stage tests depth (`draw` checked it has a buffer then).
+        let depth_buffer = target.depth.as_deref_mut().unwrap_or_default();
+        R::polygon(
+            &mut self.scratch,
+            projected.as_slice(),
+            &screen.viewport,
+            |p| {
+                let i = (p.y as usize - first_row) * width + p.x as usize;
+                if depth_test::<S, I>(depth_buffer, i, p.depth) {
+                    visible.index.push(i);
+                    visible.carried.push((p.depth, p.varying));
+                }
+            },
+        );
+        let Some(color) = target.color.as_deref_mut() else {
+            return; // a depth-only pass
+        };
+        // Copies, so the compiler sees that the colour writes below cannot change them
+        // and keeps them in registers across the loop.
+        let (surface, uniforms) = (&surface.clone(), &uniforms.clone());
+        visible.color.resize(visible.carried.len(), 0);
+        for (c, &(depth, q)) in visible.color.iter_mut().zip(&visible.carried) {
+            *c = pack(S::pixel_shader(&I::decode(depth, q), surface, uniforms));
+        }
+        for (&i, &c) in visible.index.iter().zip(&visible.color) {
+            color[i] = c;
+        }
+    }
+
+    /// Section 2: each corner in front of the near plane as one pixel.
+    fn draw_points(
+        &mut self,
+        screen: &Screen,
+        corners: &[CameraVertex<S::Varying>; 3],
+        surface: &Surface,
+        uniforms: &Uniforms,
+        target: &mut Target,
+    ) {
+        for &c in corners {
+            if screen.near.is_some_and(|n| !in_front(&c, n)) {
+                continue;
+            }
+            let Some(s) =
+                project::<_, I>(&screen.projection, c).filter(|s| screen.band.contains(s))
+            else {
+                continue;
+            };
+            R::point(s, &screen.viewport, |p| {
+                shade_pixel::<S, I>(p, surface, uniforms, target)
+            });
+        }
+    }
+
+    /// The handout's `DrawPolygonEdges`: a line from corner i to corner (i + 1) mod 3,
+    /// each cut at the near plane and the guard band first.
+    fn draw_edges(
+        &mut self,
+        screen: &Screen,
+        corners: &[CameraVertex<S::Varying>; 3],
+        surface: &Surface,
+        uniforms: &Uniforms,
+        target: &mut Target,
+    ) {
+        for i in 0..3 {
+            let (a, b) = (corners[i], corners[(i + 1) % 3]);
+            let near_cut = match screen.near {
+                Some(n) => clip_segment_near(a, b, n),
+                None => Some((a, b)),
+            };
+            let Some((a, b)) = near_cut else { continue };
+            let project = |c| project::<_, I>(&screen.projection, c);
+            let (Some(a), Some(b)) = (project(a), project(b)) else {
+                continue;
+            };
+            let banded = if screen.band.contains(&a) && screen.band.contains(&b) {
+                Some((a, b))
+            } else {
+                clip_segment_rect(a, b, &screen.band)
+            };
+            let Some((a, b)) = banded else { continue };
+            R::line(a, b, &screen.viewport, |p| {
+                shade_pixel::<S, I>(p, surface, uniforms, target)
+            });
+        }
+    }
+}
+
+/// Whether a vertex is at or beyond the near plane `z = near` (false for NaN).
+#[inline]
+fn in_front<V>(c: &CameraVertex<V>, near: f32) -> bool {
+    c.position.z >= near
+}
+
+/// The projection part of the handout's `VertexShader`: eq. 3 and 4 (relative to
+/// the screen centre, before the rasterizer places it on a pixel) and 1/z, with
+/// depth and the varying encoded for interpolation. `None` if the vertex lies on
+/// the camera plane and cannot be projected.
+#[inline]
+fn project<V: Varying, I: Interpolation>(
+    projection: &Projection,
+    c: CameraVertex<V>,
+) -> Option<ScreenVertex<V>> {
+    let (x, y, zinv) = projection.project_centred(c.position)?;
+    let (depth, varying) = I::encode(zinv, c.varying);
+    Some(ScreenVertex {
+        x,
+        y,
+        depth,
+        varying,
+    })
+}
+
+/// The depth test of section 5 for pixel `i`: true, with the depth buffer updated,
+/// if the pixel is nearer than what is there (or the stage has no depth test).
+#[inline(always)]
+fn depth_test<S: Stage, I: Interpolation>(buffer: &mut [f32], i: usize, depth: f32) -> bool {
+    if !S::DEPTH_TEST {
+        return true;
+    }
+    let zinv = I::zinv(depth);
+    // Nearer means larger 1/z. A NaN compares false and is never drawn.
+    if zinv <= buffer[i] || zinv.is_nan() {
+        return false;
+    }
+    buffer[i] = zinv;
+    true
+}
+
+/// The handout's `PixelShader` for one pixel of a point or line: the depth test,
+/// then the stage's colour into the target.
+#[inline(always)]
+fn shade_pixel<S: Stage, I: Interpolation>(
+    p: Pixel<S::Varying>,
+    surface: &Surface,
+    uniforms: &Uniforms,
+    target: &mut Target,
+) {
+    let i = target.index(p.x, p.y);
+    let depth_buffer = target.depth.as_deref_mut().unwrap_or_default();
+    if depth_test::<S, I>(depth_buffer, i, p.depth) {
+        if let Some(color) = target.color.as_deref_mut() {
+            color[i] = pack(S::pixel_shader(
+                &I::decode(p.depth, p.varying),
+                surface,
+                uniforms,
+            ));
+        }
+    }
+}
+
+/// True if every corner lies beyond one side of the screen by more than the
+/// pixel or two that rounding and running sums can move a pixel.
+fn off_screen<V>(corners: &[ScreenVertex<V>], screen: &Rect) -> bool {
+    let m = 2.0;
+    corners.iter().all(|v| v.x < screen.left - m)
+        || corners.iter().all(|v| v.x > screen.right + m)
+        || corners.iter().all(|v| v.y < screen.top - m)
+        || corners.iter().all(|v| v.y > screen.bottom + m)
+}
+
+/// Where one frame is drawn: the camera's projection and near plane, the screen
+/// and the guard band around it (in screen-centred coordinates), and the pixels
+/// the target lets us write.
+struct Screen {
+    projection: Projection,
+    near: Option<f32>,
+    rect: Rect,
+    band: Rect,
+    viewport: Viewport,
+}
+
+impl Screen {
+    fn new(camera: &Camera, target: &Target) -> Self {
+        let rect = camera.screen_rect();
+        let g = camera.width.max(camera.height) as f32 * GUARD_BAND;
+        Screen {
+            projection: camera.projection(),
+            near: camera.near,
+            rect,
+            band: Rect {
+                left: rect.left - g,
+                top: rect.top - g,
+                right: rect.right + g,
+                bottom: rect.bottom + g,
+            },
+            viewport: Viewport {
+                half_width: (camera.width / 2) as i32,
+                half_height: (camera.height / 2) as i32,
+                bounds: Bounds {
+                    x: 0..target.width.min(camera.width) as i32,
+                    y: target.rows.start as i32..target.rows.end.min(camera.height) as i32,
+                },
+            },
+        }
+    }
+}
+
+/// Any pipeline behind one interface, for choosing a stage at run time.
+pub trait Render {
+    /// Sizes `frame` to the camera's image and draws `mesh` into all of it.
+    fn render(&mut self, mesh: &Mesh, camera: &Camera, uniforms: &Uniforms, frame: &mut Frame);
+
+    /// [`Pipeline::draw`]: draws `mesh` into `target`, a band of the camera's image.
+    fn draw(&mut self, mesh: &Mesh, camera: &Camera, uniforms: &Uniforms, target: &mut Target);
+}
+
+impl<S: Stage, I: Interpolation, R: Rasterizer> Render for Pipeline<S, I, R> {
+    fn draw(&mut self, mesh: &Mesh, camera: &Camera, uniforms: &Uniforms, target: &mut Target) {
+        Pipeline::draw(self, mesh, camera, uniforms, target)
+    }
+
+    fn render(&mut self, mesh: &Mesh, camera: &Camera, uniforms: &Uniforms, frame: &mut Frame) {
+        frame.resize(camera.width, camera.height, S::DEPTH_TEST);
+        self.draw(mesh, camera, uniforms, &mut frame.target());
+    }
+}

@@ -1,0 +1,73 @@
+//! Rasterizers: from projected vertices to the pixels a point, a line or a
+//! polygon covers, each with its interpolated depth and varying.
+//!
+//! A rasterizer is a strategy: the pipeline hands it projected (and clipped)
+//! corners and gets pixels back, so a second way of covering pixels plugs in
+//! beside the handout's without touching the stages. [`RowRaster`] is the
+//! handout's (sections 3 and 4).
+
+pub mod rows;
+
+pub use rows::RowRaster;
+
+use super::clip::ScreenVertex;
+use super::interpolate::{Pixel, Varying};
+use std::ops::Range;
+
+/// The pixels a primitive may write: `x` in `0..width` and `y` in the target's
+/// band of rows. The handout writes anywhere, which is undefined in C++; here a
+/// pixel outside is skipped and rows outside are never stored.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Bounds {
+    pub x: Range<i32>,
+    pub y: Range<i32>,
+}
+
+impl Bounds {
+    /// No limit: for printing rows of a polygon that is not on any screen.
+    pub fn unbounded() -> Self {
+        Bounds {
+            x: i32::MIN..i32::MAX,
+            y: i32::MIN..i32::MAX,
+        }
+    }
+
+    #[inline]
+    pub fn contains<V>(&self, p: &Pixel<V>) -> bool {
+        self.x.contains(&p.x) && self.y.contains(&p.y)
+    }
+}
+
+/// Where projected vertices land: the image's half size (the handout adds `W/2`
+/// and `H/2` after projecting) and the pixels that may be written.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Viewport {
+    pub half_width: i32,
+    pub half_height: i32,
+    pub bounds: Bounds,
+}
+
+/// A way of covering pixels. Its scratch buffers are kept by the caller from one
+/// primitive and one frame to the next.
+pub trait Rasterizer: Copy + Default + 'static {
+    type Scratch<V: Varying>: Default;
+
+    /// A projected point as one pixel, if it lands in the bounds.
+    fn point<V: Varying>(p: ScreenVertex<V>, viewport: &Viewport, plot: impl FnMut(Pixel<V>));
+
+    /// The pixels of the segment from `a` to `b`.
+    fn line<V: Varying>(
+        a: ScreenVertex<V>,
+        b: ScreenVertex<V>,
+        viewport: &Viewport,
+        plot: impl FnMut(Pixel<V>),
+    );
+
+    /// The pixels of a convex polygon, each once.
+    fn polygon<V: Varying>(
+        scratch: &mut Self::Scratch<V>,
+        corners: &[ScreenVertex<V>],
+        viewport: &Viewport,
+        plot: impl FnMut(Pixel<V>),
+    );
+}

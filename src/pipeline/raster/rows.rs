@@ -1,0 +1,270 @@
+//! The handout's rasterizer: vertices truncated to whole pixels, lines by
+//! `Interpolate` (`DrawLineSDL`, section 3), polygons by `ComputePolygonRows` and
+//! `DrawPolygonRows` (section 4).
+
+use super::{Bounds, Rasterizer, Viewport};
+use crate::pipeline::clip::ScreenVertex;
+use crate::pipeline::interpolate::{line_pixels, Pixel, Steps, Varying, RUNNING_SUM_LIMIT};
+
+/// The handout's rows rasterizer (`--raster rows`, the default).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct RowRaster;
+
+/// A projected vertex on its pixel, as the handout's `VertexShader` places it:
+/// `int(f X/Z) + W/2`, truncating toward zero before the half size is added. The
+/// pipeline only passes vertices inside the guard band, far inside `i32`.
+#[inline]
+pub fn to_pixel<V>(s: ScreenVertex<V>, viewport: &Viewport) -> Pixel<V> {
+    Pixel {
+        x: s.x as i32 + viewport.half_width,
+        y: s.y as i32 + viewport.half_height,
+        depth: s.depth,
+        varying: s.varying,
+    }
+}
+
+impl Rasterizer for RowRaster {
+    type Scratch<V: Varying> = Rows<V>;
+
+    fn point<V: Varying>(p: ScreenVertex<V>, viewport: &Viewport, mut plot: impl FnMut(Pixel<V>)) {
+        let p = to_pixel(p, viewport);
+        if viewport.bounds.contains(&p) {
+            plot(p);
+        }
+    }
+
+    fn line<V: Varying>(
+        a: ScreenVertex<V>,
+        b: ScreenVertex<V>,
+        viewport: &Viewport,
+        plot: impl FnMut(Pixel<V>),
+    ) {
+        let (a, b) = (to_pixel(a, viewport), to_pixel(b, viewport));
+        draw_line(a, b, &viewport.bounds, plot);
+    }
+
+    fn polygon<V: Varying>(
+        rows: &mut Rows<V>,
+        corners: &[ScreenVertex<V>],
+        viewport: &Viewport,
+        plot: impl FnMut(Pixel<V>),
+    ) {
+        let mut pixels = [Pixel::default(); crate::pipeline::clip::MAX_CORNERS];
+        for (p, &c) in pixels.iter_mut().zip(corners) {
+            *p = to_pixel(c, viewport);
+        }
+        compute_polygon_rows(&pixels[..corners.len()], &viewport.bounds, rows);
+        draw_polygon_rows(rows, &viewport.bounds, plot);
+    }
+}
+
+/// `DrawLineSDL`: the `max(|dx|, |dy|) + 1` interpolated pixels from `a` to `b`,
+/// each handed to `plot` if it is in the bounds.
+pub fn draw_line<V: Varying>(
+    a: Pixel<V>,
+    b: Pixel<V>,
+    bounds: &Bounds,
+    mut plot: impl FnMut(Pixel<V>),
+) {
+    for p in Steps::new(a, b, line_pixels(&a, &b)) {
+        if bounds.contains(&p) {
+            plot(p);
+        }
+    }
+}
+
+/// The handout's `leftPixels` and `rightPixels`: the first and last pixel of every
+/// row a polygon covers, from row `top` down. Kept between polygons so that
+/// drawing allocates only when a polygon is taller than any before it.
+#[derive(Clone, Debug, Default)]
+pub struct Rows<V> {
+    pub top: i32,
+    pub left: Vec<Pixel<V>>,
+    pub right: Vec<Pixel<V>>,
+}
+
+impl<V> Rows<V> {
+    pub fn new() -> Self {
+        Rows {
+            top: 0,
+            left: Vec::new(),
+            right: Vec::new(),
+        }
+    }
+
+    pub fn len(&self) -> usize {
+        self.left.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.left.is_empty()
+    }
+}
+
+/// `ComputePolygonRows` for a convex polygon: one (left, right) pair per row from the
+/// smallest to the largest y, found by walking every edge with `Interpolate` and
+/// keeping the smallest and largest x seen on each row. Rows outside `bounds.y` are
+/// not stored. A row that no edge reaches keeps left = `i32::MAX`,
+/// right = `i32::MIN` and draws nothing.
+pub fn compute_polygon_rows<V: Varying>(
+    vertices: &[Pixel<V>],
+    bounds: &Bounds,
+    rows: &mut Rows<V>,
+) {
+    rows.left.clear();
+    rows.right.clear();
+    let Some(first) = vertices.first() else {
+        return;
+    };
+    // 1. The rows the polygon spans, cut to the bounds.
+    let (y_min, y_max) = vertices
+        .iter()
+        .fold((first.y, first.y), |(lo, hi), p| (lo.min(p.y), hi.max(p.y)));
+    let top = y_min.max(bounds.y.start);
+    let bottom = y_max.min(bounds.y.end.saturating_sub(1));
+    rows.top = top;
+    if top > bottom {
+        return;
+    }
+    // 2. and 3. One entry per row; left starts very large and right very small.
+    let n = (bottom as i64 - top as i64 + 1) as usize;
+    let unset = |x: i32, row: usize| Pixel {
+        x,
+        y: top + row as i32,
+        ..*first
+    };
+    rows.left.extend((0..n).map(|r| unset(i32::MAX, r)));
+    rows.right.extend((0..n).map(|r| unset(i32::MIN, r)));
+    // 4. Walk each edge and widen the rows it passes through.
+    let count = vertices.len();
+    for i in 0..count {
+        let (a, b) = (vertices[i], vertices[(i + 1) % count]);
+        for p in Steps::new(a, b, line_pixels(&a, &b)) {
+            let row = p.y as i64 - top as i64;
+            if row < 0 || row >= n as i64 {
+                continue;
+            }
+            let row = row as usize;
+            if p.x < rows.left[row].x {
+                rows.left[row] = p;
+            }
+            if p.x > rows.right[row].x {
+                rows.right[row] = p;
+            }
+        }
+    }
+}
+
+/// `DrawPolygonRows`: interpolate each row from its left to its right pixel and hand
+/// every pixel in the bounds to `plot`.
+///
+/// Along a row x steps by `(n - 1) / (n - 1)`, exactly 1, so the running sum of x
+/// holds whole numbers and only depth and the varying need one; the result is bit
+/// for bit the handout's `Interpolate` over the row. Pixels left of the bounds still
+/// add their step, so the sum is the same as if they were drawn. Rows longer than
+/// `RUNNING_SUM_LIMIT` compute each value directly (see `interpolate`).
+pub fn draw_polygon_rows<V: Varying>(
+    rows: &Rows<V>,
+    bounds: &Bounds,
+    mut plot: impl FnMut(Pixel<V>),
+) {
+    for (l, r) in rows.left.iter().zip(&rows.right) {
+        let n = r.x as i64 - l.x as i64 + 1;
+        if n <= 0 {
+            continue;
+        }
+        let (depth_span, varying_span) = (r.depth - l.depth, r.varying - l.varying);
+        let d = (n - 1).max(1) as f32;
+        let first = l.x.max(bounds.x.start);
+        let last = r.x.min(bounds.x.end - 1);
+        if n as usize > RUNNING_SUM_LIMIT {
+            // Too long for a running sum to stay accurate: each value directly.
+            for x in first..=last {
+                let t = (x as i64 - l.x as i64) as f32 / d;
+                plot(Pixel {
+                    x,
+                    y: l.y,
+                    depth: l.depth + depth_span * t,
+                    varying: l.varying + varying_span * t,
+                });
+            }
+            continue;
+        }
+        let (depth_step, varying_step) = (depth_span / d, varying_span / d);
+        let (mut depth, mut varying) = (l.depth, l.varying);
+        for _ in l.x..first {
+            depth += depth_step;
+            varying = varying + varying_step;
+        }
+        for x in first..=last {
+            plot(Pixel {
+                x,
+                y: l.y,
+                depth,
+                varying,
+            });
+            depth += depth_step;
+            varying = varying + varying_step;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn screen(w: i32, h: i32) -> Bounds {
+        Bounds { x: 0..w, y: 0..h }
+    }
+
+    fn rows_of(points: &[(i32, i32)]) -> Vec<((i32, i32), (i32, i32))> {
+        let v: Vec<_> = points.iter().map(|&(x, y)| Pixel::at(x, y)).collect();
+        let mut rows = Rows::new();
+        compute_polygon_rows(&v, &Bounds::unbounded(), &mut rows);
+        rows.left
+            .iter()
+            .zip(&rows.right)
+            .map(|(l, r)| ((l.x, l.y), (r.x, r.y)))
+            .collect()
+    }
+
+    #[test]
+    fn the_handouts_triangle_of_section_4() {
+        // (10,20), (30,10), (20,40) spans 40 - 10 + 1 = 31 rows.
+        assert_eq!(rows_of(&[(10, 20), (30, 10), (20, 40)]).len(), 31);
+    }
+
+    #[test]
+    fn rows_outside_the_bounds_are_not_stored() {
+        let v = [Pixel::at(5, -10), Pixel::at(-20, 10), Pixel::at(30, 30)];
+        let mut rows = Rows::new();
+        compute_polygon_rows(&v, &screen(8, 8), &mut rows);
+        assert_eq!(rows.top, 0);
+        assert_eq!(rows.len(), 8);
+        let mut seen = 0;
+        draw_polygon_rows(&rows, &screen(8, 8), |p| {
+            assert!((0..8).contains(&p.x) && (0..8).contains(&p.y));
+            seen += 1;
+        });
+        assert_eq!(seen, 64, "the triangle covers the whole 8 x 8 screen");
+    }
+
+    #[test]
+    fn a_band_of_rows_draws_exactly_its_part_of_the_whole() {
+        let v = [Pixel::at(3, 1), Pixel::at(60, 20), Pixel::at(10, 50)];
+        let draw = |b: Bounds| {
+            let mut rows = Rows::new();
+            compute_polygon_rows(&v, &b, &mut rows);
+            let mut out = Vec::new();
+            draw_polygon_rows(&rows, &b, |p| out.push((p.x, p.y)));
+            out
+        };
+        let whole = draw(screen(64, 64));
+        let mut bands = draw(Bounds { x: 0..64, y: 0..17 });
+        bands.extend(draw(Bounds {
+            x: 0..64,
+            y: 17..64,
+        }));
+        assert_eq!(bands, whole);
+    }
+}

@@ -1,0 +1,194 @@
+//! The handout's stages as types. A stage is the handout's `VertexShader` and
+//! `PixelShader` and the per-pixel struct between them ([`Stage::Varying`]), plus
+//! the primitive it draws and whether it tests depth. The rest is the shared core
+//! in [`super::draw`].
+//!
+//! | stage | section | primitive | depth test | interpolated |
+//! |---|---|---|---|---|
+//! | [`Points`] | 2 | points | no | nothing |
+//! | [`Wireframe`] | 3 | lines | no | nothing |
+//! | [`Filled`] | 4 | polygons | no | nothing |
+//! | [`Depth`] | 5 | polygons | yes | nothing (depth is the core's) |
+//! | [`VertexLight`] | 6.1 | polygons | yes | [`Illumination`]: eq. 11 at the vertices |
+//! | [`PixelLight`] | 6.2 | polygons | yes | [`Position`]: the 3D position |
+
+use super::interpolate::{linear_ops, Nothing, Varying};
+use super::light::Light;
+use super::mesh::{Material, Vertex};
+use glam::Vec3;
+
+/// What a stage draws for each triangle.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Primitive {
+    /// Each projected vertex as one pixel (section 2).
+    Points,
+    /// Each edge as a line (section 3).
+    Lines,
+    /// Each triangle filled (section 4).
+    Polygons,
+}
+
+/// Scene-wide inputs of the shaders, the same for every vertex and pixel of a frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Uniforms {
+    pub light: Light,
+}
+
+/// The triangle being drawn, as its shaders see it: the handout's `currentNormal`
+/// and `currentReflectance` (the material's colour).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Surface {
+    pub normal: Vec3,
+    pub material: Material,
+}
+
+/// One stage of the handout.
+pub trait Stage: 'static {
+    /// What the vertex shader computes and every pixel receives, interpolated.
+    type Varying: Varying;
+    const PRIMITIVE: Primitive;
+    /// Whether pixels go through the depth test of section 5.
+    const DEPTH_TEST: bool;
+
+    /// The stage's part of the handout's `VertexShader` (the projection is the
+    /// core's): what the pixels of this vertex's triangle interpolate.
+    fn vertex_shader(vertex: &Vertex, surface: &Surface, uniforms: &Uniforms) -> Self::Varying;
+
+    /// The colour part of the handout's `PixelShader` (the depth test is the
+    /// core's): a linear colour, which the render target rounds to 8 bits.
+    fn pixel_shader(varying: &Self::Varying, surface: &Surface, uniforms: &Uniforms) -> Vec3;
+}
+
+/// Section 2: the projected vertices, white on black.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Points;
+
+impl Stage for Points {
+    type Varying = Nothing;
+    const PRIMITIVE: Primitive = Primitive::Points;
+    const DEPTH_TEST: bool = false;
+
+    fn vertex_shader(_: &Vertex, _: &Surface, _: &Uniforms) -> Nothing {
+        Nothing {}
+    }
+
+    fn pixel_shader(_: &Nothing, _: &Surface, _: &Uniforms) -> Vec3 {
+        Vec3::ONE
+    }
+}
+
+/// Section 3: the triangles' edges, white on black.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Wireframe;
+
+impl Stage for Wireframe {
+    type Varying = Nothing;
+    const PRIMITIVE: Primitive = Primitive::Lines;
+    const DEPTH_TEST: bool = false;
+
+    fn vertex_shader(_: &Vertex, _: &Surface, _: &Uniforms) -> Nothing {
+        Nothing {}
+    }
+
+    fn pixel_shader(_: &Nothing, _: &Surface, _: &Uniforms) -> Vec3 {
+        Vec3::ONE
+    }
+}
+
+/// Section 4: triangles filled in their colour, in scene order (no occlusion).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Filled;
+
+impl Stage for Filled {
+    type Varying = Nothing;
+    const PRIMITIVE: Primitive = Primitive::Polygons;
+    const DEPTH_TEST: bool = false;
+
+    fn vertex_shader(_: &Vertex, _: &Surface, _: &Uniforms) -> Nothing {
+        Nothing {}
+    }
+
+    fn pixel_shader(_: &Nothing, surface: &Surface, _: &Uniforms) -> Vec3 {
+        surface.material.color
+    }
+}
+
+/// Section 5: filled triangles behind a depth buffer of 1/z.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Depth;
+
+impl Stage for Depth {
+    type Varying = Nothing;
+    const PRIMITIVE: Primitive = Primitive::Polygons;
+    const DEPTH_TEST: bool = true;
+
+    fn vertex_shader(_: &Vertex, _: &Surface, _: &Uniforms) -> Nothing {
+        Nothing {}
+    }
+
+    fn pixel_shader(_: &Nothing, surface: &Surface, _: &Uniforms) -> Vec3 {
+        surface.material.color
+    }
+}
+
+/// Section 6.1's per-pixel struct: the light R of eq. 11 that leaves the surface.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Illumination {
+    pub light: Vec3,
+}
+
+linear_ops!(Illumination { light });
+
+/// Section 6.1: eq. 10 and 11 at each vertex; the reflected light is interpolated.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct VertexLight;
+
+impl Stage for VertexLight {
+    type Varying = Illumination;
+    const PRIMITIVE: Primitive = Primitive::Polygons;
+    const DEPTH_TEST: bool = true;
+
+    fn vertex_shader(vertex: &Vertex, surface: &Surface, uniforms: &Uniforms) -> Illumination {
+        let rho = surface.material.color;
+        Illumination {
+            light: uniforms
+                .light
+                .reflected(vertex.position, vertex.normal, rho),
+        }
+    }
+
+    fn pixel_shader(varying: &Illumination, _: &Surface, _: &Uniforms) -> Vec3 {
+        varying.light
+    }
+}
+
+/// Section 6.2's per-pixel struct: the handout's `pos3d`, the point's world position.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Position {
+    pub world: Vec3,
+}
+
+linear_ops!(Position { world });
+
+/// Section 6.2: the 3D position is interpolated and eq. 10 and 11 run at each
+/// pixel with the triangle's normal and reflectance.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct PixelLight;
+
+impl Stage for PixelLight {
+    type Varying = Position;
+    const PRIMITIVE: Primitive = Primitive::Polygons;
+    const DEPTH_TEST: bool = true;
+
+    fn vertex_shader(vertex: &Vertex, _: &Surface, _: &Uniforms) -> Position {
+        Position {
+            world: vertex.position,
+        }
+    }
+
+    #[inline]
+    fn pixel_shader(varying: &Position, surface: &Surface, uniforms: &Uniforms) -> Vec3 {
+        let rho = surface.material.color;
+        uniforms.light.reflected(varying.world, surface.normal, rho)
+    }
+}

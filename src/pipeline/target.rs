@@ -1,0 +1,166 @@
+//! What the pipeline draws into: a colour buffer and a depth buffer, either of
+//! them optional, over a band of the image's rows. The caller owns the buffers;
+//! [`Frame`] is the usual owner of a whole image.
+
+use glam::Vec3;
+use std::ops::Range;
+
+/// A render target: `rows` of an image `width` x `height`, with a colour buffer
+/// (`0x00RRGGBB`, the layout a window wants) and a depth buffer (1/z per pixel,
+/// 0 = infinitely far), each `width` x `rows.len()` and indexed from the band's
+/// first row. A depth-only pass has no colour; a stage without a depth test
+/// needs no depth.
+#[derive(Debug)]
+pub struct Target<'a> {
+    pub width: u32,
+    pub height: u32,
+    pub rows: Range<u32>,
+    pub color: Option<&'a mut [u32]>,
+    pub depth: Option<&'a mut [f32]>,
+}
+
+impl Target<'_> {
+    /// The handout's clearing at the start of `Draw`: black, depth 0.
+    pub fn clear(&mut self) {
+        if let Some(c) = self.color.as_deref_mut() {
+            c.fill(0);
+        }
+        if let Some(d) = self.depth.as_deref_mut() {
+            d.fill(0.0);
+        }
+    }
+
+    /// The index of pixel (x, y) in the buffers; (x, y) must be in the band.
+    #[inline]
+    pub fn index(&self, x: i32, y: i32) -> usize {
+        (y as u32 - self.rows.start) as usize * self.width as usize + x as usize
+    }
+}
+
+/// A whole image with its own buffers.
+#[derive(Clone, Debug, Default)]
+pub struct Frame {
+    pub width: u32,
+    pub height: u32,
+    pub color: Vec<u32>,
+    /// Empty unless the last stage drawn tests depth.
+    pub depth: Vec<f32>,
+}
+
+impl Frame {
+    pub fn new(width: u32, height: u32) -> Self {
+        Frame {
+            width,
+            height,
+            color: vec![0; width as usize * height as usize],
+            depth: Vec::new(),
+        }
+    }
+
+    /// Sizes the buffers for a `width` x `height` image, with a depth buffer when
+    /// `depth`; reuses them when the size is unchanged.
+    pub fn resize(&mut self, width: u32, height: u32, depth: bool) {
+        let n = width as usize * height as usize;
+        self.width = width;
+        self.height = height;
+        self.color.resize(n, 0);
+        if depth {
+            self.depth.resize(n, 0.0);
+        } else {
+            self.depth = Vec::new();
+        }
+    }
+
+    /// The whole image as a render target.
+    pub fn target(&mut self) -> Target<'_> {
+        Target {
+            width: self.width,
+            height: self.height,
+            rows: 0..self.height,
+            color: Some(&mut self.color),
+            depth: (!self.depth.is_empty()).then_some(&mut self.depth[..]),
+        }
+    }
+
+    /// The colour at (x, y) as 8-bit RGB.
+    pub fn rgb(&self, x: u32, y: u32) -> [u8; 3] {
+        unpack(self.color[(y * self.width + x) as usize])
+    }
+
+    /// The whole image as 8-bit RGB rows, top first.
+    pub fn to_rgb8(&self) -> Vec<u8> {
+        self.color.iter().flat_map(|&c| unpack(c)).collect()
+    }
+}
+
+/// `0x00RRGGBB` as `[r, g, b]`: the inverse of [`pack`]'s layout.
+#[inline]
+pub fn unpack(c: u32) -> [u8; 3] {
+    [(c >> 16) as u8, (c >> 8) as u8, c as u8]
+}
+
+/// A linear colour in [0, 1] as `0x00RRGGBB`, clamped and rounded to 8 bits.
+/// NaN becomes 0.
+#[inline]
+pub fn pack(c: Vec3) -> u32 {
+    // Written as selects and a plain conversion, not clamp and `as`, so loops over
+    // pixels vectorise; for every input, NaN included, the result is that of
+    // clamping then rounding.
+    let q = |v: f32| {
+        let v = if v > 0.0 { v } else { 0.0 }; // NaN -> 0
+        let v = if v < 1.0 { v } else { 1.0 };
+        // SAFETY: v is in [0, 1], so the value is in [0.5, 255.5]: finite and
+        // representable as i32, which is all `to_int_unchecked` requires.
+        unsafe { (v * 255.0 + 0.5).to_int_unchecked::<i32>() as u32 }
+    };
+    (q(c.x) << 16) | (q(c.y) << 8) | q(c.z)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pack_rounds_and_clamps() {
+        assert_eq!(pack(Vec3::new(1.0, 0.5, 0.0)), 0x00ff_8000);
+        assert_eq!(pack(Vec3::new(2.0, -1.0, f32::NAN)), 0x00ff_0000);
+        assert_eq!(pack(Vec3::splat(0.75)), 0x00bf_bfbf); // 191.25 rounds to 191
+    }
+
+    #[test]
+    fn pack_is_clamp_then_round() {
+        let reference = |v: f32| {
+            if v.is_nan() {
+                0
+            } else {
+                (v.clamp(0.0, 1.0) * 255.0 + 0.5) as u32
+            }
+        };
+        let mut values: Vec<f32> = (0..=4000).map(|i| i as f32 / 3000.0 - 0.1).collect();
+        values.extend([
+            f32::NAN,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            -0.0,
+            1.0,
+            0.5 / 255.0,
+        ]);
+        for v in values {
+            assert_eq!(pack(Vec3::splat(v)), reference(v) * 0x01_01_01, "{v}");
+        }
+    }
+
+    #[test]
+    fn a_band_indexes_from_its_first_row() {
+        let mut color = vec![0u32; 10 * 3];
+        let t = Target {
+            width: 10,
+            height: 8,
+            rows: 4..7,
+            color: Some(&mut color),
+            depth: None,
+        };
+        assert_eq!(t.index(0, 4), 0);
+        assert_eq!(t.index(9, 6), 29);
+    }
+}
