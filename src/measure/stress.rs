@@ -39,6 +39,7 @@ impl<S: Stage> Stage for Checked<S> {
     type Varying = S::Varying;
     const PRIMITIVE: Primitive = S::PRIMITIVE;
     const DEPTH_TEST: bool = S::DEPTH_TEST;
+    const BATCH_SHADING: bool = S::BATCH_SHADING;
 
     fn vertex_shader(vertex: &Vertex, surface: &Surface, uniforms: &Uniforms) -> S::Varying {
         S::vertex_shader(vertex, surface, uniforms)

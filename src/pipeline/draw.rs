@@ -145,12 +145,30 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Pipeline<S, I, R> {
         if !projected.as_slice().iter().all(|s| screen.band.contains(s)) {
             projected = clip_rect(&projected, &screen.band);
         }
-        let visible = &mut self.visible;
-        visible.index.clear();
-        visible.carried.clear();
         let (width, first_row) = (target.width as usize, target.rows.start as usize);
         // Empty unless the stage tests depth (`draw` checked it has a buffer then).
         let depth_buffer = target.depth.as_deref_mut().unwrap_or_default();
+        let mut color = target.color.as_deref_mut();
+        if !S::BATCH_SHADING {
+            R::polygon(
+                &mut self.scratch,
+                projected.as_slice(),
+                &screen.viewport,
+                |p| {
+                    let i = (p.y as usize - first_row) * width + p.x as usize;
+                    if depth_test::<S, I>(depth_buffer, i, p.depth) {
+                        if let Some(color) = color.as_deref_mut() {
+                            let varying = I::decode(p.depth, p.varying);
+                            color[i] = pack(S::pixel_shader(&varying, surface, uniforms));
+                        }
+                    }
+                },
+            );
+            return;
+        }
+        let visible = &mut self.visible;
+        visible.index.clear();
+        visible.carried.clear();
         R::polygon(
             &mut self.scratch,
             projected.as_slice(),
@@ -163,7 +181,7 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Pipeline<S, I, R> {
                 }
             },
         );
-        if let Some(color) = target.color.as_deref_mut() {
+        if let Some(color) = color {
             visible.shade::<S, I>(surface, uniforms, color);
         }
     }
@@ -359,8 +377,10 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Render for Pipeline<S, I, R> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::pipeline::mesh::face_normal;
+    use crate::pipeline::stage::Primitive;
     use crate::pipeline::stage::{Depth, PixelLight};
-    use crate::pipeline::{Light, Perspective};
+    use crate::pipeline::{Affine, Light, Perspective};
     use glam::Vec3;
 
     /// A wall at z = 2 facing a camera at the origin, 100 x 100 pixels, f = 100.
@@ -415,6 +435,65 @@ mod tests {
         // The rows rasterizer samples each pixel where its truncated corner puts
         // it, up to 1.5 pixels from (x, y): here at most 2 steps of 255.
         assert!(worst <= 2, "largest difference {worst}");
+    }
+
+    /// `PixelLight` shaded pixel by pixel as each is found, not a triangle at a time.
+    struct Immediate;
+
+    impl Stage for Immediate {
+        type Varying = <PixelLight as Stage>::Varying;
+        const PRIMITIVE: Primitive = Primitive::Polygons;
+        const DEPTH_TEST: bool = true;
+        const BATCH_SHADING: bool = false;
+        fn vertex_shader(v: &crate::pipeline::Vertex, s: &Surface, u: &Uniforms) -> Self::Varying {
+            PixelLight::vertex_shader(v, s, u)
+        }
+        fn pixel_shader(v: &Self::Varying, s: &Surface, u: &Uniforms) -> Vec3 {
+            PixelLight::pixel_shader(v, s, u)
+        }
+    }
+
+    #[test]
+    fn shading_a_triangle_at_a_time_gives_the_image_of_shading_each_pixel() {
+        // The wall, and in front of it a tilted triangle that hides part of it and
+        // is itself partly hidden by one drawn after it: pixels overwritten, and
+        // pixels rejected by the depth test, in both orders.
+        let (mut mesh, camera) = wall();
+        let red = Vec3::new(0.75, 0.15, 0.15);
+        let tilted = [(-1.5, -1.0, 1.2), (1.0, -1.5, 1.8), (0.0, 1.5, 1.5)].map(Vec3::from);
+        mesh.push_triangle(tilted, face_normal(tilted), red);
+        let front = [(-1.0, 0.0, 1.0), (1.0, 0.2, 1.0), (0.0, 1.0, 1.0)].map(Vec3::from);
+        mesh.push_triangle(front, -Vec3::Z, Vec3::ONE);
+        let uniforms = Uniforms {
+            light: Light::handout(),
+        };
+        for affine in [false, true] {
+            let (mut batched, mut immediate) = (Frame::default(), Frame::default());
+            if affine {
+                Pipeline::<PixelLight, Affine>::new().render(
+                    &mesh,
+                    &camera,
+                    &uniforms,
+                    &mut batched,
+                );
+                Pipeline::<Immediate, Affine>::new().render(
+                    &mesh,
+                    &camera,
+                    &uniforms,
+                    &mut immediate,
+                );
+            } else {
+                Pipeline::<PixelLight>::new().render(&mesh, &camera, &uniforms, &mut batched);
+                Pipeline::<Immediate>::new().render(&mesh, &camera, &uniforms, &mut immediate);
+            }
+            assert_eq!(batched.color, immediate.color, "affine: {affine}");
+            let red_pixels = batched
+                .color
+                .iter()
+                .filter(|&&c| c >> 16 > 2 * (c & 0xff))
+                .count();
+            assert!(red_pixels > 500, "the tilted triangle shows: {red_pixels}");
+        }
     }
 
     #[test]

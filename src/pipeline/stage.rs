@@ -49,6 +49,11 @@ pub trait Stage: 'static {
     const PRIMITIVE: Primitive;
     /// Whether pixels go through the depth test of section 5.
     const DEPTH_TEST: bool;
+    /// Whether the core runs the pixel shader over each triangle's visible pixels
+    /// together, after rasterizing it, instead of at each pixel as it is found:
+    /// worth it for a shader heavy enough to gain from a vectorised loop. The
+    /// same pixel shader runs either way, on the same pixels.
+    const BATCH_SHADING: bool = false;
 
     /// The stage's part of the handout's `VertexShader` (the projection is the
     /// core's): what the pixels of this vertex's triangle interpolate.
@@ -179,6 +184,7 @@ impl Stage for PixelLight {
     type Varying = Position;
     const PRIMITIVE: Primitive = Primitive::Polygons;
     const DEPTH_TEST: bool = true;
+    const BATCH_SHADING: bool = true;
 
     fn vertex_shader(vertex: &Vertex, _: &Surface, _: &Uniforms) -> Position {
         Position {
