@@ -1,6 +1,7 @@
 //! The `rasterlab` command: parses arguments and calls the library.
 
-use clap::{Args, Parser, Subcommand};
+use clap::parser::ValueSource;
+use clap::{ArgMatches, Args, CommandFactory, FromArgMatches, Parser, Subcommand};
 use glam::Vec3;
 use rasterlab::app::{self, controls, parse, viewer, Settings};
 use rasterlab::measure::raytrace;
@@ -28,11 +29,12 @@ enum Command {
     /// Section 4: triangles filled in scene order, no depth test (Figure 4).
     Filled(Render),
     /// Section 5: filled triangles behind a depth buffer of 1/z (Figure 5).
-    Depth(Interpolating),
-    /// Section 6.1: equations 10 and 11 at each vertex, interpolated (Figure 6).
-    VertexLight(Interpolating),
+    Depth(Render),
+    /// Section 6.1: equations 10 and 11 at each vertex, interpolated linearly on the
+    /// screen (Figure 6).
+    VertexLight(Render),
     /// Section 6.2: equations 10 and 11 at each pixel (Figure 7; Figure 8 with --affine).
-    PixelLight(Interpolating),
+    PixelLight(Render),
     /// Every figure (fig2 to fig8) and fig1-overview.png, all stages side by side.
     All(AllArgs),
     /// The reference: ray-traces the same scene, one ray per pixel centre (lab 2).
@@ -66,7 +68,8 @@ enum Command {
 #[derive(Args, Debug)]
 struct SceneArgs {
     /// Image size in pixels, WIDTHxHEIGHT.
-    #[arg(long, value_name = "WxH", default_value = "500x500", value_parser = parse::size)]
+    #[arg(long, value_name = "WxH", default_value = "500x500", value_parser = parse::size,
+          allow_hyphen_values = true)]
     size: (u32, u32),
     /// Focal length f in pixels (eq. 1 to 4).
     #[arg(long, value_name = "F", default_value = "500", value_parser = parse::positive,
@@ -126,23 +129,51 @@ impl SceneArgs {
 
 #[derive(Args, Debug)]
 struct Render {
-    /// Output PNG [default: <stage>.png]
-    #[arg(short, long, value_name = "FILE")]
+    /// Output image: .png or .bmp, or - for standard output [default: <stage>.png,
+    /// <stage>-affine.png or <stage>-perspective.png]
+    #[arg(short, long, value_name = "FILE", value_parser = parse::image_path,
+          allow_hyphen_values = true)]
     out: Option<PathBuf>,
     /// Also render N times and print the median render time on stderr (no file I/O timed).
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=100_000))]
-    time: Option<u32>,
+    #[arg(long, value_name = "N", value_parser = |s: &str| parse::whole(s, 1, 100_000),
+          allow_hyphen_values = true)]
+    time: Option<u64>,
+    #[command(flatten)]
+    interpolation: InterpolationArgs,
     #[command(flatten)]
     scene: SceneArgs,
 }
 
+/// How a lit stage's per-pixel values cross the screen.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum Mode {
+    /// Linearly on the screen (section 6.1; Figure 8 for pixel-light).
+    Affine,
+    /// Corrected for perspective (section 6.2).
+    Perspective,
+}
+
 #[derive(Args, Debug)]
-struct Interpolating {
-    /// Interpolate linearly in screen space, without perspective correction.
-    #[arg(long)]
+struct InterpolationArgs {
+    /// How vertex-light and pixel-light interpolate across the screen [default: the
+    /// handout's: affine for vertex-light, perspective for pixel-light]. 1/z, and so
+    /// the depth test, is the same either way.
+    #[arg(long, value_name = "MODE", value_enum)]
+    interpolation: Option<Mode>,
+    /// Short for --interpolation affine (with pixel-light: Figure 8).
+    #[arg(long, conflicts_with = "interpolation")]
     affine: bool,
-    #[command(flatten)]
-    render: Render,
+}
+
+impl InterpolationArgs {
+    /// Some(true) for affine, Some(false) for perspective, None for the handout's.
+    fn affine(&self) -> Option<bool> {
+        if self.affine {
+            Some(true)
+        } else {
+            self.interpolation.map(|m| m == Mode::Affine)
+        }
+    }
 }
 
 #[derive(Args, Debug)]
@@ -192,11 +223,11 @@ struct ViewArgs {
     /// The stage to show first: points, wireframe, filled, depth, vertex-light, pixel-light.
     #[arg(value_name = "STAGE", default_value = "pixel-light", value_parser = parse::stage)]
     stage: StageName,
-    /// Start with affine (not perspective-correct) interpolation.
-    #[arg(long)]
-    affine: bool,
+    #[command(flatten)]
+    interpolation: InterpolationArgs,
     /// Quit after N frames.
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", value_parser = |s: &str| parse::whole(s, 1, u64::MAX),
+          allow_hyphen_values = true)]
     frames: Option<u64>,
     /// Save the last frame to FILE when quitting.
     #[arg(long, value_name = "FILE")]
@@ -205,8 +236,9 @@ struct ViewArgs {
     #[arg(long, value_name = "SCRIPT")]
     keys: Option<controls::Script>,
     /// Frames per second to aim for; 0 draws as fast as it can.
-    #[arg(long, value_name = "N", default_value = "60")]
-    fps: usize,
+    #[arg(long, value_name = "N", default_value = "60",
+          value_parser = |s: &str| parse::whole(s, 0, 1000), allow_hyphen_values = true)]
+    fps: u64,
     #[command(flatten)]
     scene: SceneArgs,
 }
@@ -219,30 +251,37 @@ struct RowsArgs {
     vertices: Vec<(i32, i32)>,
 }
 
-fn render(stage: StageName, affine: bool, args: &Render) -> Result<(), String> {
-    let view = Figure { stage, affine };
+/// Prints to standard output; a reader that has gone away (`| head`) ends the
+/// output quietly.
+fn print_out(text: &str) -> Result<(), String> {
+    app::image_io::write_bytes(std::path::Path::new("-"), text.as_bytes())
+        .map_err(|e| e.to_string())
+}
+
+fn render(stage: StageName, args: &Render) -> Result<(), String> {
+    let figure = Figure::with_interpolation(stage, args.interpolation.affine());
     let out = args
         .out
         .clone()
-        .unwrap_or_else(|| PathBuf::from(format!("{}.png", stage.name())));
+        .unwrap_or_else(|| PathBuf::from(figure.default_file()));
     let settings = args.scene.settings();
-    let timing = app::render_to_file(view, &settings, &out, args.time.map(|n| n as usize))
+    let timing = app::render_to_file(figure, &settings, &out, args.time.map(|n| n as usize))
         .map_err(|e| e.to_string())?;
     if let Some(t) = timing {
         eprintln!("render: {t}");
     }
-    eprintln!("wrote {}", out.display());
+    eprintln!("wrote {}", app::image_io::describe(&out));
     Ok(())
 }
 
 fn run(cli: Cli) -> Result<(), String> {
     match &cli.command {
-        Command::Points(a) => render(StageName::Points, false, a),
-        Command::Wireframe(a) => render(StageName::Wireframe, false, a),
-        Command::Filled(a) => render(StageName::Filled, false, a),
-        Command::Depth(a) => render(StageName::Depth, a.affine, &a.render),
-        Command::VertexLight(a) => render(StageName::VertexLight, a.affine, &a.render),
-        Command::PixelLight(a) => render(StageName::PixelLight, a.affine, &a.render),
+        Command::Points(a) => render(StageName::Points, a),
+        Command::Wireframe(a) => render(StageName::Wireframe, a),
+        Command::Filled(a) => render(StageName::Filled, a),
+        Command::Depth(a) => render(StageName::Depth, a),
+        Command::VertexLight(a) => render(StageName::VertexLight, a),
+        Command::PixelLight(a) => render(StageName::PixelLight, a),
         Command::All(a) => {
             for path in app::render_all(&a.scene.settings(), &a.out).map_err(|e| e.to_string())? {
                 eprintln!("wrote {}", path.display());
@@ -275,7 +314,7 @@ fn run(cli: Cli) -> Result<(), String> {
             if let Some(t) = timing {
                 eprintln!("render: {t}");
             }
-            eprintln!("wrote {}", out.display());
+            eprintln!("wrote {}", app::image_io::describe(&out));
             Ok(())
         }
         Command::Report(a) => {
@@ -288,7 +327,7 @@ fn run(cli: Cli) -> Result<(), String> {
         }
         Command::Stress(a) => {
             let (tables, failed, total) = app::stress(a.quick, |line| eprintln!("{line}"));
-            println!("{tables}");
+            print_out(&format!("{tables}\n"))?;
             if failed > 0 {
                 return Err(format!("{failed} of {total} stress cases failed"));
             }
@@ -297,11 +336,11 @@ fn run(cli: Cli) -> Result<(), String> {
         Command::View(a) => {
             let options = viewer::Options {
                 settings: a.scene.settings(),
-                view: controls::view_of(a.stage, a.affine),
+                view: Figure::with_interpolation(a.stage, a.interpolation.affine()),
                 frames: a.frames,
                 screenshot: a.screenshot.clone(),
                 script: a.keys.clone().unwrap_or_default().0,
-                fps: a.fps,
+                fps: a.fps as usize,
             };
             let summary = viewer::run(options)?;
             eprintln!(
@@ -314,15 +353,54 @@ fn run(cli: Cli) -> Result<(), String> {
             Ok(())
         }
         Command::Rows(a) => {
-            print!("{}", app::rows_text(&a.vertices));
+            print_out(&app::rows_text(&a.vertices))?;
             Ok(())
         }
     }
 }
 
+/// One rule for options that nothing the command draws would use: they are refused
+/// with the reason, so a typo or a misunderstanding never passes silently. (The
+/// viewer takes them all: its keys switch to every figure.)
+fn refuse_unused_options(command: &str, m: &ArgMatches) -> Result<(), String> {
+    let given = |id: &str| {
+        m.try_get_raw(id).is_ok_and(|v| v.is_some())
+            && m.value_source(id) == Some(ValueSource::CommandLine)
+    };
+    let stage = StageName::from_name(command);
+    let lit = matches!(stage, Some(StageName::VertexLight | StageName::PixelLight));
+    let interpolates = stage.is_some_and(StageName::interpolates);
+    for id in ["affine", "interpolation"] {
+        if given(id) && !interpolates {
+            return Err(format!(
+                "--{id} does nothing for {command}: only vertex-light and pixel-light interpolate values that perspective correction changes"
+            ));
+        }
+    }
+    let shaded = lit || (command == "raytrace" && !m.get_flag("flat"));
+    for id in ["light", "light_power", "indirect"] {
+        if given(id) && stage.is_some() && !shaded {
+            return Err(format!(
+                "--{} does nothing for {command}: only vertex-light and pixel-light are lit",
+                id.replace('_', "-")
+            ));
+        }
+        if given(id) && command == "raytrace" && !shaded {
+            return Err(format!(
+                "--{} does nothing for raytrace --flat: flat colours are not lit",
+                id.replace('_', "-")
+            ));
+        }
+    }
+    Ok(())
+}
+
 fn main() -> ExitCode {
-    let cli = match Cli::try_parse() {
-        Ok(cli) => cli,
+    let parsed = Cli::command()
+        .try_get_matches()
+        .and_then(|m| Cli::from_arg_matches(&m).map(|cli| (m, cli)));
+    let (matches, cli) = match parsed {
+        Ok(parsed) => parsed,
         Err(e) if e.kind() == clap::error::ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
             // Plain `rasterlab`: the help, but as the usage error it is.
             let _ = e.print();
@@ -345,6 +423,12 @@ fn main() -> ExitCode {
             return ExitCode::from(2);
         }
     };
+    if let Some((command, m)) = matches.subcommand() {
+        if let Err(message) = refuse_unused_options(command, m) {
+            eprintln!("error: {message} (see 'rasterlab {command} --help')");
+            return ExitCode::from(2);
+        }
+    }
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(message) => {

@@ -79,10 +79,83 @@ fn bad_arguments_are_one_line_usage_errors() {
         "not a finite number",
     );
     usage_error(&["points", "--focal", "0"], "greater than 0");
-    usage_error(&["points", "--affine"], "--affine");
     usage_error(&["points", "--time", "0"], "--time");
+    usage_error(&["points", "--size", "-5x5"], "'-5' is not a whole number");
+    usage_error(&["points", "--time", "-1"], "from 1 to 100000, got '-1'");
+    usage_error(&["view", "--fps", "-1"], "from 0 to 1000, got '-1'");
+    usage_error(&["view", "--frames", "0"], "from 1 to");
+    usage_error(&["view", "--keys", "8"], "unknown key '8'");
+    usage_error(&["points", "-o", "x.jpg"], ".png or .bmp");
+    usage_error(
+        &["pixel-light", "--affine", "--interpolation", "perspective"],
+        "cannot be used with",
+    );
     usage_error(&["rows"], "X,Y");
     usage_error(&["rows", "1,2", "3"], "expected a pixel X,Y");
+}
+
+#[test]
+fn options_a_stage_would_ignore_are_refused_with_the_reason() {
+    for (args, needle) in [
+        (
+            &["points", "--light", "0,0,0"][..],
+            "--light does nothing for points",
+        ),
+        (
+            &["depth", "--light-power", "2"][..],
+            "--light-power does nothing for depth",
+        ),
+        (
+            &["filled", "--affine"][..],
+            "--affine does nothing for filled",
+        ),
+        (
+            &["depth", "--affine"][..],
+            "--affine does nothing for depth",
+        ),
+        (
+            &["wireframe", "--interpolation", "perspective"][..],
+            "--interpolation does nothing for wireframe",
+        ),
+        (
+            &["raytrace", "--affine"][..],
+            "--affine does nothing for raytrace",
+        ),
+        (
+            &["raytrace", "--flat", "--indirect", "0.2"][..],
+            "--indirect does nothing for raytrace --flat",
+        ),
+    ] {
+        usage_error(args, needle);
+    }
+}
+
+#[test]
+fn default_names_say_what_the_image_is() {
+    let dir = temp_dir("names");
+    for (args, file) in [
+        (&["pixel-light", "--affine"][..], "pixel-light-affine.png"),
+        (&["pixel-light"][..], "pixel-light.png"),
+        (&["vertex-light"][..], "vertex-light.png"),
+        (
+            &["vertex-light", "--interpolation", "perspective"][..],
+            "vertex-light-perspective.png",
+        ),
+        (
+            &["vertex-light", "--interpolation", "affine"][..],
+            "vertex-light.png",
+        ),
+    ] {
+        let o = Command::new(env!("CARGO_BIN_EXE_rasterlab"))
+            .args(args)
+            .args(["--size", "16x16"])
+            .current_dir(&*dir)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{args:?}: {}", stderr(&o));
+        assert!(dir.join(file).exists(), "{args:?} wrote {}", stderr(&o));
+        std::fs::remove_file(dir.join(file)).unwrap();
+    }
 }
 
 #[test]
@@ -96,14 +169,17 @@ fn an_unwritable_path_is_a_one_line_failure_and_leaves_no_file() {
     assert!(err.starts_with("error: cannot write "), "{err}");
     assert!(err.contains("x.png"), "{err}");
     assert!(!target.exists());
-    // A folder where the file should go: the temporary file is cleaned up.
-    let o = rasterlab(&["filled", "-o", dir.to_str().unwrap()]);
+    // A folder where the file should go: refused, nothing left behind.
+    let folder = dir.join("f.png");
+    std::fs::create_dir(&folder).unwrap();
+    let o = rasterlab(&["filled", "-o", folder.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("it is a folder"), "{}", stderr(&o));
     let left: Vec<_> = std::fs::read_dir(&dir)
         .unwrap()
         .map(|e| e.unwrap().file_name())
         .collect();
-    assert_eq!(left.len(), 0, "{left:?}");
+    assert_eq!(left, ["f.png"], "{left:?}");
 }
 
 #[test]

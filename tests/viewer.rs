@@ -129,15 +129,20 @@ fn seven_and_p_switch_interpolation() {
         "{args:?}"
     );
     assert_renderer_agrees(&dir, &args, &shot);
-    // p on vertex-light turns perspective correction off.
-    let args = view(
-        &dir,
-        &["vertex-light", "--frames", "3", "--fps", "0", "--keys", "p"],
-    );
+    // p on vertex-light (affine by default, as section 6.1) turns perspective
+    // correction on, and the renderer agrees with the window.
+    let shot = dir.join("vertex.png");
+    let mut keys: Vec<String> = ["vertex-light", "--frames", "3", "--fps", "0", "--keys", "p"]
+        .map(String::from)
+        .to_vec();
+    keys.extend(["--screenshot".into(), shot.to_str().unwrap().into()]);
+    let args = view(&dir, &keys);
     assert!(
-        args.join(" ").starts_with("vertex-light --affine"),
+        args.join(" ")
+            .starts_with("vertex-light --interpolation perspective"),
         "{args:?}"
     );
+    assert_renderer_agrees(&dir, &args, &shot);
 }
 
 #[test]

@@ -3,7 +3,7 @@
 //! mapping is tested on its own and key scripts replay exactly.
 
 use super::Settings;
-use crate::measure::figure::{Figure, StageName};
+use crate::measure::figure::Figure;
 use glam::Vec3;
 
 /// The keys the viewer reads, independent of the window library.
@@ -159,6 +159,21 @@ impl MouseLook {
     }
 }
 
+/// Whether holding or pressing `key` does anything in the viewer.
+pub fn does_something(key: Key) -> bool {
+    let held = matches!(
+        key,
+        Key::Up
+            | Key::Down
+            | Key::Left
+            | Key::Right
+            | Key::PageUp
+            | Key::PageDown
+            | Key::Char('r' | 'f' | 'w' | 's' | 'a' | 'd' | 'q' | 'e')
+    );
+    held || action(key).is_some()
+}
+
 /// What pressing `key` asks for, if anything.
 pub fn action(key: Key) -> Option<Action> {
     match key {
@@ -180,14 +195,6 @@ pub fn toggle_perspective(view: Figure) -> Figure {
         }
     } else {
         view
-    }
-}
-
-/// The stage names `rasterlab view` accepts, as `Figure`s: the six stages.
-pub fn view_of(stage: StageName, affine: bool) -> Figure {
-    Figure {
-        stage,
-        affine: affine && stage.interpolates(),
     }
 }
 
@@ -227,7 +234,13 @@ pub fn parse_script(script: &str) -> Result<Vec<Vec<Key>>, String> {
             keys.split('+')
                 .map(|k| {
                     Key::parse(k.trim())
-                        .ok_or_else(|| format!("unknown key '{}' in '{item}'", k.trim()))
+                        .filter(|&key| does_something(key))
+                        .ok_or_else(|| {
+                            format!(
+                                "unknown key '{}' in '{item}': 'h' in the viewer lists the keys",
+                                k.trim()
+                            )
+                        })
                 })
                 .collect::<Result<_, _>>()?
         };
@@ -247,6 +260,7 @@ pub fn pressed(now: &[Key], before: &[Key]) -> Vec<Key> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::measure::figure::StageName;
 
     fn settings() -> Settings {
         Settings::default()
@@ -333,8 +347,14 @@ mod tests {
         assert_eq!(action(Key::Char('8')), None);
         assert_eq!(action(Key::Char('p')), Some(Action::TogglePerspective));
         assert_eq!(action(Key::Escape), Some(Action::Quit));
-        assert!(toggle_perspective(Figure::of(StageName::Depth)).affine);
-        assert!(!toggle_perspective(Figure::of(StageName::Filled)).affine);
+        assert!(toggle_perspective(Figure::of(StageName::PixelLight)).affine);
+        assert!(!toggle_perspective(Figure::of(StageName::VertexLight)).affine);
+        let depth = Figure::of(StageName::Depth);
+        assert_eq!(
+            toggle_perspective(depth),
+            depth,
+            "depth has nothing to correct"
+        );
     }
 
     #[test]
@@ -373,8 +393,14 @@ mod tests {
         );
         assert_eq!(
             parse_script("jump*3").unwrap_err(),
-            "unknown key 'jump' in 'jump*3'"
+            "unknown key 'jump' in 'jump*3': 'h' in the viewer lists the keys"
         );
+        // Keys that do nothing in the viewer are refused too.
+        assert!(parse_script("8")
+            .unwrap_err()
+            .starts_with("unknown key '8'"));
+        assert!(parse_script("x").is_err());
+        assert!(parse_script("7,c,h,esc").is_ok());
         assert!(parse_script("up*x").is_err());
         assert_eq!(
             pressed(&[Key::Up, Key::Char('p')], &[Key::Up]),

@@ -72,6 +72,31 @@ pub fn stage(s: &str) -> Result<StageName, String> {
     })
 }
 
+/// A whole number from `min` to `max`, for counts such as `--time N`.
+pub fn whole(s: &str, min: u64, max: u64) -> Result<u64, String> {
+    match s.trim().parse::<u64>() {
+        Ok(v) if (min..=max).contains(&v) => Ok(v),
+        _ => Err(format!(
+            "expected a whole number from {min} to {max}, got '{s}'"
+        )),
+    }
+}
+
+/// Where an image goes: `-` for standard output, a file whose name ends in `.png`
+/// or `.bmp` (the format follows the name), or an existing device or FIFO such as
+/// /dev/null (PNG).
+pub fn image_path(s: &str) -> Result<std::path::PathBuf, String> {
+    let path = std::path::PathBuf::from(s);
+    let special = std::fs::metadata(&path).is_ok_and(|m| !m.is_file() && !m.is_dir());
+    if s == "-" || special || crate::app::image_io::ImageFormat::of(&path).is_some() {
+        Ok(path)
+    } else {
+        Err(format!(
+            "cannot tell the image format of '{s}': name the file .png or .bmp, or give - for standard output"
+        ))
+    }
+}
+
 /// The largest coordinate `rasterlab rows` takes, so a polygon's rows always fit.
 pub const MAX_ROWS_COORDINATE: i32 = 10_000;
 
@@ -126,6 +151,20 @@ mod tests {
         assert_eq!(vec3("1,a,2").unwrap_err(), "'a' is not a number in '1,a,2'");
         assert!(positive("0").is_err());
         assert_eq!(positive("2.5"), Ok(2.5));
+    }
+
+    #[test]
+    fn counts_and_image_names() {
+        assert_eq!(whole("5", 1, 10), Ok(5));
+        assert_eq!(
+            whole("-1", 1, 10).unwrap_err(),
+            "expected a whole number from 1 to 10, got '-1'"
+        );
+        assert!(whole("0", 1, 10).is_err());
+        assert!(image_path("a.png").is_ok() && image_path("b.BMP").is_ok());
+        assert!(image_path("-").is_ok());
+        assert!(image_path("x.jpg").unwrap_err().contains("'x.jpg'"));
+        assert!(image_path("noext").is_err());
     }
 
     #[test]

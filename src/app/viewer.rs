@@ -6,7 +6,7 @@
 use super::controls::{self, action, pressed, Action, Controls, Key, MouseLook};
 use super::image_io::write_png;
 use super::Settings;
-use crate::measure::figure::Figure;
+use crate::measure::figure::{Figure, StageName};
 use crate::pipeline::{Frame, Render};
 use crate::scene::cornell_box;
 use std::collections::VecDeque;
@@ -56,28 +56,32 @@ impl Summary {
 /// that it parses back to the same f32 values.
 pub fn command_for(view: Figure, s: &Settings) -> String {
     let v = |v: glam::Vec3| format!("{},{},{}", v.x, v.y, v.z);
-    format!(
-        "rasterlab {}{} --size {}x{} --focal {} --camera {} --yaw {} --pitch {} --light {} --light-power {} --indirect {}",
+    let mut command = format!(
+        "rasterlab {}{} --size {}x{} --focal {} --camera {} --yaw {} --pitch {}",
         view.stage.name(),
-        if view.affine { " --affine" } else { "" },
+        view.interpolation_flag(),
         s.width,
         s.height,
         s.focal,
         v(s.camera),
         s.yaw,
         s.pitch,
-        v(s.light),
-        s.light_power,
-        s.indirect
-    ) + &if s.clip {
-        if s.near == crate::pipeline::camera::DEFAULT_NEAR {
-            String::new()
-        } else {
-            format!(" --near {}", s.near)
-        }
-    } else {
-        " --no-clip".to_string()
+    );
+    // Only the lit stages take the light (the others refuse options they ignore).
+    if matches!(view.stage, StageName::VertexLight | StageName::PixelLight) {
+        command += &format!(
+            " --light {} --light-power {} --indirect {}",
+            v(s.light),
+            s.light_power,
+            s.indirect
+        );
     }
+    if !s.clip {
+        command += " --no-clip";
+    } else if s.near != crate::pipeline::camera::DEFAULT_NEAR {
+        command += &format!(" --near {}", s.near);
+    }
+    command
 }
 
 fn median(samples: impl Iterator<Item = Duration>) -> Duration {
@@ -255,7 +259,7 @@ pub fn run(options: Options) -> Result<Summary, String> {
         window
             .update_with_buffer(&frame.color, w, h)
             .map_err(|e| format!("cannot update the window: {e}"))?;
-        if count % 10 == 0 {
+        if count.is_multiple_of(10) {
             window.set_title(&title(view, &frame_times, draw));
         }
         count += 1;
@@ -275,7 +279,6 @@ pub fn run(options: Options) -> Result<Summary, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::measure::figure::StageName;
 
     #[test]
     fn keys_map_from_the_window_library() {
@@ -302,6 +305,12 @@ mod tests {
             command_for(view, &s),
             "rasterlab pixel-light --affine --size 500x500 --focal 500 --camera -0.1,0.2,-2.9 \
              --yaw 0.33333334 --pitch 0 --light 0,-0.5,-0.7 --light-power 1.1 --indirect 0.5"
+        );
+        let depth = Figure::of(StageName::Depth);
+        assert_eq!(
+            command_for(depth, &Settings { clip: false, ..s }),
+            "rasterlab depth --size 500x500 --focal 500 --camera -0.1,0.2,-2.9 \
+             --yaw 0.33333334 --pitch 0 --no-clip"
         );
     }
 }

@@ -44,19 +44,26 @@ impl StageName {
         StageName::ALL.into_iter().find(|s| s.name() == name)
     }
 
-    /// Whether `--affine` changes anything for this stage.
+    /// Whether the stage interpolates anything whose interpolation can be affine or
+    /// perspective-correct (1/z alone is always interpolated as it is).
     pub fn interpolates(self) -> bool {
-        matches!(
-            self,
-            StageName::Depth | StageName::VertexLight | StageName::PixelLight
-        )
+        matches!(self, StageName::VertexLight | StageName::PixelLight)
+    }
+
+    /// The handout's choice for this stage: section 6.1 interpolates the
+    /// illumination linearly on the screen; section 6.2 corrects the position.
+    pub fn affine_by_default(self) -> bool {
+        self == StageName::VertexLight
     }
 }
 
-/// A stage and whether it interpolates affinely: one of the handout's figures.
+/// A stage and whether its per-pixel struct is interpolated affinely (linearly on
+/// the screen) or perspective-correctly: one of the handout's figures, or a
+/// variation of one.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Figure {
     pub stage: StageName,
+    /// Only meaningful where [`StageName::interpolates`]; false elsewhere.
     pub affine: bool,
 }
 
@@ -101,11 +108,29 @@ impl Figure {
         },
     ];
 
+    /// The stage as the handout draws it.
     pub const fn of(stage: StageName) -> Self {
         Figure {
             stage,
-            affine: false,
+            affine: matches!(stage, StageName::VertexLight),
         }
+    }
+
+    /// The stage with the interpolation given (`Some(true)` affine), or the
+    /// handout's when `None` or when the stage interpolates nothing it would change.
+    pub fn with_interpolation(stage: StageName, affine: Option<bool>) -> Self {
+        Figure {
+            stage,
+            affine: match affine {
+                Some(a) if stage.interpolates() => a,
+                _ => Figure::of(stage).affine,
+            },
+        }
+    }
+
+    /// Whether this is the handout's interpolation for its stage.
+    pub fn is_default(self) -> bool {
+        self == Figure::of(self.stage)
     }
 
     /// The file name `rasterlab all` gives this figure.
@@ -114,21 +139,38 @@ impl Figure {
             (StageName::Points, _) => "fig2-points.png",
             (StageName::Wireframe, _) => "fig3-wireframe.png",
             (StageName::Filled, _) => "fig4-filled.png",
-            (StageName::Depth, false) => "fig5-depth.png",
-            (StageName::Depth, true) => "fig5-depth-affine.png",
-            (StageName::VertexLight, false) => "fig6-vertex-light.png",
-            (StageName::VertexLight, true) => "fig6-vertex-light-affine.png",
+            (StageName::Depth, _) => "fig5-depth.png",
+            (StageName::VertexLight, true) => "fig6-vertex-light.png",
+            (StageName::VertexLight, false) => "fig6-vertex-light-perspective.png",
             (StageName::PixelLight, false) => "fig7-pixel-light.png",
             (StageName::PixelLight, true) => "fig8-pixel-light-affine.png",
         }
     }
 
-    /// A short label: the stage name, with ` --affine` where it applies.
+    /// The options that select this interpolation when it is not the handout's:
+    /// `--affine` or `--interpolation perspective`; empty for the default.
+    pub fn interpolation_flag(self) -> &'static str {
+        match (self.is_default(), self.affine) {
+            (true, _) => "",
+            (false, true) => " --affine",
+            (false, false) => " --interpolation perspective",
+        }
+    }
+
+    /// A short label: the stage name and any option that changes its interpolation.
     pub fn label(self) -> String {
-        if self.affine && self.stage.interpolates() {
-            format!("{} --affine", self.stage.name())
+        format!("{}{}", self.stage.name(), self.interpolation_flag())
+    }
+
+    /// The image file a stage subcommand writes without `-o`: the label's words
+    /// joined, so `pixel-light --affine` does not overwrite `pixel-light.png`.
+    pub fn default_file(self) -> String {
+        let flag = self.interpolation_flag().trim_start_matches(" --");
+        let flag = flag.strip_prefix("interpolation ").unwrap_or(flag);
+        if flag.is_empty() {
+            format!("{}.png", self.stage.name())
         } else {
-            self.stage.name().to_string()
+            format!("{}-{flag}.png", self.stage.name())
         }
     }
 
@@ -151,5 +193,40 @@ impl Figure {
         let mut frame = Frame::default();
         self.pipeline().render(mesh, camera, uniforms, &mut frame);
         frame
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_say_what_differs_from_the_handout() {
+        let f = |stage, affine| Figure::with_interpolation(stage, affine);
+        assert_eq!(f(StageName::VertexLight, None).label(), "vertex-light");
+        assert_eq!(
+            f(StageName::VertexLight, Some(false)).label(),
+            "vertex-light --interpolation perspective"
+        );
+        assert_eq!(
+            f(StageName::PixelLight, Some(true)).label(),
+            "pixel-light --affine"
+        );
+        assert_eq!(
+            f(StageName::Depth, Some(true)),
+            Figure::of(StageName::Depth)
+        );
+        assert_eq!(
+            f(StageName::PixelLight, Some(true)).default_file(),
+            "pixel-light-affine.png"
+        );
+        assert_eq!(
+            f(StageName::VertexLight, Some(false)).default_file(),
+            "vertex-light-perspective.png"
+        );
+        assert_eq!(Figure::of(StageName::Points).default_file(), "points.png");
+        let files: Vec<&str> = Figure::FIGURES.iter().map(|f| f.figure_file()).collect();
+        assert_eq!(files[4], "fig6-vertex-light.png");
+        assert_eq!(files[6], "fig8-pixel-light-affine.png");
     }
 }

@@ -578,7 +578,7 @@ pub fn steps_drift(n: usize) -> f64 {
     let at = |varying: f32| Pixel {
         x: 0,
         y: 0,
-        depth: 0.0,
+        zinv: 0.0,
         varying,
     };
     Steps::new(at(0.0), at(rise), n)

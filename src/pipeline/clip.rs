@@ -72,12 +72,12 @@ pub struct CameraVertex<V> {
 
 /// A projected vertex before it is placed on a pixel: `x = f X/Z` and
 /// `y = f Y/Z` relative to the screen centre, and what is interpolated on screen
-/// (depth and the varying, as the interpolation encodes them).
+/// (1/z, and the varying as the interpolation encodes it).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ScreenVertex<V> {
     pub x: f32,
     pub y: f32,
-    pub depth: f32,
+    pub zinv: f32,
     pub varying: V,
 }
 
@@ -92,7 +92,7 @@ fn lerp_screen<V: Varying>(p: ScreenVertex<V>, q: ScreenVertex<V>, t: f32) -> Sc
     ScreenVertex {
         x: p.x + (q.x - p.x) * t,
         y: p.y + (q.y - p.y) * t,
-        depth: p.depth + (q.depth - p.depth) * t,
+        zinv: p.zinv + (q.zinv - p.zinv) * t,
         varying: p.varying + (q.varying - p.varying) * t,
     }
 }
@@ -264,7 +264,7 @@ mod tests {
         ScreenVertex {
             x,
             y,
-            depth: x,
+            zinv: x,
             varying: x + y,
         }
     }

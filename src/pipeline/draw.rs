@@ -51,8 +51,8 @@ impl<V: Varying> Visible<V> {
         const CHUNK: usize = 64;
         let mut shaded = [0u32; CHUNK];
         for (index, carried) in self.index.chunks(CHUNK).zip(self.carried.chunks(CHUNK)) {
-            for (c, &(depth, q)) in shaded.iter_mut().zip(carried) {
-                *c = pack(S::pixel_shader(&I::decode(depth, q), surface, uniforms));
+            for (c, &(zinv, q)) in shaded.iter_mut().zip(carried) {
+                *c = pack(S::pixel_shader(&I::decode(zinv, q), surface, uniforms));
             }
             for (&i, &c) in index.iter().zip(&shaded) {
                 color[i] = c;
@@ -156,9 +156,9 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Pipeline<S, I, R> {
                 &screen.viewport,
                 |p| {
                     let i = (p.y as usize - first_row) * width + p.x as usize;
-                    if depth_test::<S, I>(depth_buffer, i, p.depth) {
+                    if depth_test::<S>(depth_buffer, i, p.zinv) {
                         if let Some(color) = color.as_deref_mut() {
-                            let varying = I::decode(p.depth, p.varying);
+                            let varying = I::decode(p.zinv, p.varying);
                             color[i] = pack(S::pixel_shader(&varying, surface, uniforms));
                         }
                     }
@@ -175,9 +175,9 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Pipeline<S, I, R> {
             &screen.viewport,
             |p| {
                 let i = (p.y as usize - first_row) * width + p.x as usize;
-                if depth_test::<S, I>(depth_buffer, i, p.depth) {
+                if depth_test::<S>(depth_buffer, i, p.zinv) {
                     visible.index.push(i);
-                    visible.carried.push((p.depth, p.varying));
+                    visible.carried.push((p.zinv, p.varying));
                 }
             },
         );
@@ -252,7 +252,7 @@ fn in_front<V>(c: &CameraVertex<V>, near: f32) -> bool {
 
 /// The projection part of the handout's `VertexShader`: eq. 3 and 4 (relative to
 /// the screen centre, before the rasterizer places it on a pixel) and 1/z, with
-/// depth and the varying encoded for interpolation. `None` if the vertex lies on
+/// the varying encoded for interpolation. `None` if the vertex lies on
 /// the camera plane and cannot be projected.
 #[inline]
 fn project<V: Varying, I: Interpolation>(
@@ -260,11 +260,11 @@ fn project<V: Varying, I: Interpolation>(
     c: CameraVertex<V>,
 ) -> Option<ScreenVertex<V>> {
     let (x, y, zinv) = projection.project_centred(c.position)?;
-    let (depth, varying) = I::encode(zinv, c.varying);
+    let varying = I::encode(zinv, c.varying);
     Some(ScreenVertex {
         x,
         y,
-        depth,
+        zinv,
         varying,
     })
 }
@@ -272,11 +272,10 @@ fn project<V: Varying, I: Interpolation>(
 /// The depth test of section 5 for pixel `i`: true, with the depth buffer updated,
 /// if the pixel is nearer than what is there (or the stage has no depth test).
 #[inline(always)]
-fn depth_test<S: Stage, I: Interpolation>(buffer: &mut [f32], i: usize, depth: f32) -> bool {
+fn depth_test<S: Stage>(buffer: &mut [f32], i: usize, zinv: f32) -> bool {
     if !S::DEPTH_TEST {
         return true;
     }
-    let zinv = I::zinv(depth);
     // Nearer means larger 1/z. A NaN compares false and is never drawn.
     if zinv <= buffer[i] || zinv.is_nan() {
         return false;
@@ -296,10 +295,10 @@ fn shade_pixel<S: Stage, I: Interpolation>(
 ) {
     let i = target.index(p.x, p.y);
     let depth_buffer = target.depth.as_deref_mut().unwrap_or_default();
-    if depth_test::<S, I>(depth_buffer, i, p.depth) {
+    if depth_test::<S>(depth_buffer, i, p.zinv) {
         if let Some(color) = target.color.as_deref_mut() {
             color[i] = pack(S::pixel_shader(
-                &I::decode(p.depth, p.varying),
+                &I::decode(p.zinv, p.varying),
                 surface,
                 uniforms,
             ));

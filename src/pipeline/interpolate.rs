@@ -1,7 +1,7 @@
 //! The handout's `Interpolate` (section 3), for any per-pixel struct, and the two
 //! ways of interpolating a quantity across the screen (section 6.2).
 //!
-//! A [`Pixel`] is the handout's struct: an integer position, the depth value of
+//! A [`Pixel`] is the handout's struct: an integer position, the zinv value of
 //! section 5 and whatever the stage needs at every pixel (its [`Varying`]: nothing,
 //! an illumination, a 3D position). The handout grows its `Pixel` by hand each
 //! section; here the stage names the struct and the same code interpolates it.
@@ -73,20 +73,19 @@ macro_rules! linear_ops {
 
 pub(crate) use linear_ops;
 
-/// The per-pixel struct of stages that need nothing but the position and depth.
+/// The per-pixel struct of stages that need nothing but the position and zinv.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Nothing {}
 
 linear_ops!(Nothing {});
 
-/// The handout's `Pixel`: an integer image position, the depth value that is
-/// interpolated (1/z when perspective-correct; see [`Interpolation`]) and the
-/// stage's per-pixel struct.
+/// The handout's `Pixel`: an integer image position, 1/z (section 5) and the
+/// stage's per-pixel struct, as the interpolation carries it (see [`Interpolation`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Pixel<V> {
     pub x: i32,
     pub y: i32,
-    pub depth: f32,
+    pub zinv: f32,
     pub varying: V,
 }
 
@@ -96,7 +95,7 @@ impl Pixel<Nothing> {
         Pixel {
             x,
             y,
-            depth: 0.0,
+            zinv: 0.0,
             varying: Nothing {},
         }
     }
@@ -127,11 +126,11 @@ pub struct Steps<V> {
     n: usize,
 }
 
-/// Everything `Interpolate` carries, as floats: x, y, depth and the varying.
+/// Everything `Interpolate` carries, as floats: x, y, zinv and the varying.
 #[derive(Clone, Copy, Debug, Default)]
 struct Sum<V> {
     xy: Vec2,
-    depth: f32,
+    zinv: f32,
     varying: V,
 }
 
@@ -139,7 +138,7 @@ impl<V: Varying> Sum<V> {
     fn of(p: &Pixel<V>) -> Self {
         Sum {
             xy: Vec2::new(p.x as f32, p.y as f32),
-            depth: p.depth,
+            zinv: p.zinv,
             varying: p.varying,
         }
     }
@@ -151,14 +150,14 @@ impl<V: Varying> Steps<V> {
         let (start, end) = (Sum::of(&a), Sum::of(&b));
         let span = Sum {
             xy: end.xy - start.xy,
-            depth: end.depth - start.depth,
+            zinv: end.zinv - start.zinv,
             varying: end.varying - start.varying,
         };
         Steps {
             current: start,
             step: Sum {
                 xy: span.xy / d,
-                depth: span.depth / d,
+                zinv: span.zinv / d,
                 varying: span.varying / d,
             },
             start,
@@ -182,17 +181,17 @@ impl<V: Varying> Iterator for Steps<V> {
         if self.n > RUNNING_SUM_LIMIT {
             let t = self.i as f32 / self.last;
             c.xy = self.start.xy + self.span.xy * t;
-            c.depth = self.start.depth + self.span.depth * t;
+            c.zinv = self.start.zinv + self.span.zinv * t;
             c.varying = self.start.varying + self.span.varying * t;
         }
         let p = Pixel {
             x: c.xy.x as i32,
             y: c.xy.y as i32,
-            depth: c.depth,
+            zinv: c.zinv,
             varying: c.varying,
         };
         c.xy += self.step.xy;
-        c.depth += self.step.depth;
+        c.zinv += self.step.zinv;
         c.varying = c.varying + self.step.varying;
         self.i += 1;
         Some(p)
@@ -224,53 +223,45 @@ pub fn line_pixels<V>(a: &Pixel<V>, b: &Pixel<V>) -> usize {
 /// How a quantity that is linear in 3D is interpolated across the screen.
 ///
 /// Only 1/z, and q/z for any such q, is linear in the image (section 6.2), so the
-/// perspective-correct way carries those and divides at the pixel. The affine way
-/// carries z and q themselves: the mistake behind the handout's Figure 8.
+/// perspective-correct way carries q/z and multiplies by z at the pixel. The affine
+/// way carries q itself: linear on the screen, as section 6.1 interpolates the
+/// illumination and as Figure 8 shows the mistake for the position. 1/z itself is
+/// carried as it is either way, so depth and the visible surfaces do not change.
 pub trait Interpolation: Copy + Default + 'static {
     /// True when interpolation is perspective-correct.
     const PERSPECTIVE_CORRECT: bool;
-    /// What is carried for depth and for a per-pixel struct `q`, at a vertex whose
-    /// 1/z is `zinv`.
-    fn encode<V: Varying>(zinv: f32, q: V) -> (f32, V);
-    /// 1/z at a pixel, from the carried depth (for the depth test).
-    fn zinv(depth: f32) -> f32;
-    /// The per-pixel struct at a pixel, from what was carried.
-    fn decode<V: Varying>(depth: f32, q: V) -> V;
+    /// What is carried for a per-pixel struct `q` at a vertex whose 1/z is `zinv`.
+    fn encode<V: Varying>(zinv: f32, q: V) -> V;
+    /// The per-pixel struct at a pixel whose 1/z is `zinv`, from what was carried.
+    fn decode<V: Varying>(zinv: f32, q: V) -> V;
 }
 
-/// Interpolate 1/z and q/z; at the pixel q = (q/z) · z. The default.
+/// Interpolate q/z; at the pixel q = (q/z) · z. What `pixel-light` does.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Perspective;
 
-/// Interpolate z and q linearly in screen space (`--affine`).
+/// Interpolate q linearly in screen space: what `vertex-light` does (section 6.1),
+/// and `pixel-light --affine` (Figure 8).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Affine;
 
 impl Interpolation for Perspective {
     const PERSPECTIVE_CORRECT: bool = true;
     #[inline]
-    fn encode<V: Varying>(zinv: f32, q: V) -> (f32, V) {
-        (zinv, q * zinv)
+    fn encode<V: Varying>(zinv: f32, q: V) -> V {
+        q * zinv
     }
     #[inline]
-    fn zinv(depth: f32) -> f32 {
-        depth
-    }
-    #[inline]
-    fn decode<V: Varying>(depth: f32, q: V) -> V {
-        q * (1.0 / depth)
+    fn decode<V: Varying>(zinv: f32, q: V) -> V {
+        q * (1.0 / zinv)
     }
 }
 
 impl Interpolation for Affine {
     const PERSPECTIVE_CORRECT: bool = false;
     #[inline]
-    fn encode<V: Varying>(zinv: f32, q: V) -> (f32, V) {
-        (1.0 / zinv, q)
-    }
-    #[inline]
-    fn zinv(depth: f32) -> f32 {
-        1.0 / depth
+    fn encode<V: Varying>(_: f32, q: V) -> V {
+        q
     }
     #[inline]
     fn decode<V: Varying>(_: f32, q: V) -> V {
@@ -294,7 +285,7 @@ mod tests {
         Pixel {
             x: 0,
             y: 0,
-            depth: 0.0,
+            zinv: 0.0,
             varying: v,
         }
     }
@@ -337,25 +328,24 @@ mod tests {
             a: 4.0,
             b: Vec3::splat(8.0),
         };
-        let mid = |(d0, v0): (f32, Two), (d1, v1): (f32, Two)| ((d0 + d1) / 2.0, (v0 + v1) / 2.0);
-        let (d, v) = mid(
+        let zinv = (1.0 + 1.0 / 3.0) / 2.0;
+        let mid = |v0: Two, v1: Two| (v0 + v1) / 2.0;
+        let v = mid(
             Perspective::encode(1.0, q0),
             Perspective::encode(1.0 / 3.0, q1),
         );
-        let q = Perspective::decode(d, v);
+        let q = Perspective::decode(zinv, v);
         assert!(
             (q.a - 1.0).abs() < 1e-6 && q.b.abs_diff_eq(Vec3::splat(2.0), 1e-6),
             "{q:?}"
         );
-        assert!((Perspective::zinv(d) - 2.0 / 3.0).abs() < 1e-6);
-        let (d, v) = mid(Affine::encode(1.0, q0), Affine::encode(1.0 / 3.0, q1));
+        let v = mid(Affine::encode(1.0, q0), Affine::encode(1.0 / 3.0, q1));
         assert_eq!(
-            Affine::decode(d, v),
+            Affine::decode(zinv, v),
             Two {
                 a: 2.0,
                 b: Vec3::splat(4.0)
             }
         );
-        assert_eq!(Affine::zinv(d), 0.5);
     }
 }

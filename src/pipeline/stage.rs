@@ -8,7 +8,7 @@
 //! | [`Points`] | 2 | points | no | nothing |
 //! | [`Wireframe`] | 3 | lines | no | nothing |
 //! | [`Filled`] | 4 | polygons | no | nothing |
-//! | [`Depth`] | 5 | polygons | yes | nothing (depth is the core's) |
+//! | [`Depth`] | 5 | polygons | yes | nothing (1/z is the core's) |
 //! | [`VertexLight`] | 6.1 | polygons | yes | [`Illumination`]: eq. 11 at the vertices |
 //! | [`PixelLight`] | 6.2 | polygons | yes | [`Position`]: the 3D position |
 

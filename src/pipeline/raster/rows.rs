@@ -18,7 +18,7 @@ pub fn to_pixel<V>(s: ScreenVertex<V>, viewport: &Viewport) -> Pixel<V> {
     Pixel {
         x: s.x as i32 + viewport.half_width,
         y: s.y as i32 + viewport.half_height,
-        depth: s.depth,
+        zinv: s.zinv,
         varying: s.varying,
     }
 }
@@ -159,7 +159,7 @@ pub fn compute_polygon_rows<V: Varying>(
 /// every pixel in the bounds to `plot`.
 ///
 /// Along a row x steps by `(n - 1) / (n - 1)`, exactly 1, so the running sum of x
-/// holds whole numbers and only depth and the varying need one; the result is bit
+/// holds whole numbers and only 1/z and the varying need one; the result is bit
 /// for bit the handout's `Interpolate` over the row. Pixels left of the bounds still
 /// add their step, so the sum is the same as if they were drawn. Rows longer than
 /// `RUNNING_SUM_LIMIT` compute each value directly (see `interpolate`).
@@ -173,7 +173,7 @@ pub fn draw_polygon_rows<V: Varying>(
         if n <= 0 {
             continue;
         }
-        let (depth_span, varying_span) = (r.depth - l.depth, r.varying - l.varying);
+        let (zinv_span, varying_span) = (r.zinv - l.zinv, r.varying - l.varying);
         let d = (n - 1).max(1) as f32;
         let first = l.x.max(bounds.x.start);
         let last = r.x.min(bounds.x.end - 1);
@@ -184,26 +184,26 @@ pub fn draw_polygon_rows<V: Varying>(
                 plot(Pixel {
                     x,
                     y: l.y,
-                    depth: l.depth + depth_span * t,
+                    zinv: l.zinv + zinv_span * t,
                     varying: l.varying + varying_span * t,
                 });
             }
             continue;
         }
-        let (depth_step, varying_step) = (depth_span / d, varying_span / d);
-        let (mut depth, mut varying) = (l.depth, l.varying);
+        let (zinv_step, varying_step) = (zinv_span / d, varying_span / d);
+        let (mut zinv, mut varying) = (l.zinv, l.varying);
         for _ in l.x..first {
-            depth += depth_step;
+            zinv += zinv_step;
             varying = varying + varying_step;
         }
         for x in first..=last {
             plot(Pixel {
                 x,
                 y: l.y,
-                depth,
+                zinv,
                 varying,
             });
-            depth += depth_step;
+            zinv += zinv_step;
             varying = varying + varying_step;
         }
     }
