@@ -241,7 +241,7 @@ fn all_writes_every_figure_and_the_overview() {
         ]
     );
     let (w, h, _) = rasterlab::app::image_io::read_rgb_png(&dir.join("fig1-overview.png")).unwrap();
-    assert_eq!((w, h), (4 * 40 + 3 * 8, 2 * 30 + 8));
+    assert_eq!((w, h), (4 * 40 + 3 * 8, 2 * (30 + 28) + 8));
 }
 
 #[test]

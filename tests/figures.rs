@@ -4,7 +4,7 @@
 
 mod common;
 use rasterlab::app::image_io::read_rgb_png;
-use rasterlab::app::overview::overview;
+use rasterlab::app::overview::figure_one;
 use rasterlab::app::{self, Settings, OVERVIEW_FILE};
 use rasterlab::{cornell_box, Figure};
 use std::path::Path;
@@ -51,6 +51,11 @@ fn committed_figures_match_the_code() {
         );
         frames.push(frame);
     }
-    let (w, h, rgb) = overview(&frames).unwrap();
-    assert_matches(OVERVIEW_FILE, w, h, &rgb);
+    let overview = figure_one(&frames).unwrap();
+    assert_matches(
+        OVERVIEW_FILE,
+        overview.width,
+        overview.height,
+        &overview.to_rgb8(),
+    );
 }

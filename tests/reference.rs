@@ -33,6 +33,21 @@ fn pixel_light_is_the_closest_lit_stage_to_the_ray_tracer() {
 }
 
 #[test]
+fn report_refuses_an_unwritable_folder_before_measuring() {
+    let dir = temp_dir("report-unwritable");
+    let file = dir.join("a-file");
+    std::fs::write(&file, b"").unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_rasterlab"))
+        .args(["report", "--out", file.join("sub").to_str().unwrap()])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert_eq!(err.lines().count(), 1, "nothing measured first: {err}");
+    assert!(err.starts_with("error: cannot write "), "{err}");
+}
+
+#[test]
 fn quick_report_writes_its_three_files() {
     let dir = temp_dir("report");
     let out = Command::new(env!("CARGO_BIN_EXE_rasterlab"))

@@ -18,8 +18,8 @@ use crate::pipeline::raster::Bounds;
 use crate::pipeline::{Camera, Frame, Light, Mesh, Uniforms};
 use crate::scene::cornell_box;
 use glam::Vec3;
-use image_io::{write_png, write_rgb_png, write_text, WriteError};
-use overview::overview;
+use image_io::{write_png, write_text, WriteError};
+use overview::figure_one;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -142,9 +142,9 @@ pub fn render_all(settings: &Settings, dir: &Path) -> Result<Vec<PathBuf>, Write
         written.push(path);
         frames.push(frame);
     }
-    let (w, h, rgb) = overview(&frames).expect("all figures share one size");
+    let overview = figure_one(&frames).expect("seven figures of one size");
     let path = dir.join(OVERVIEW_FILE);
-    write_rgb_png(&rgb, w, h, &path)?;
+    write_png(&overview, &path)?;
     written.push(path);
     Ok(written)
 }
@@ -209,11 +209,16 @@ pub fn report(
     } else {
         report::Plan::full()
     };
-    let rows = report::measure_all(&plan, progress);
-    std::fs::create_dir_all(dir).map_err(|e| WriteError {
+    // Find an unwritable folder before the minute of measuring, not after it.
+    let fail = |e: std::io::Error| WriteError {
         path: dir.to_path_buf(),
         reason: e.to_string(),
-    })?;
+    };
+    std::fs::create_dir_all(dir).map_err(fail)?;
+    let probe = dir.join(format!(".rasterlab-write-check.{}", std::process::id()));
+    std::fs::write(&probe, b"").map_err(fail)?;
+    let _ = std::fs::remove_file(&probe);
+    let rows = report::measure_all(&plan, progress);
     let md = dir.join("report.md");
     let csv = dir.join("report.csv");
     let png = dir.join("error-vs-time.png");

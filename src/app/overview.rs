@@ -1,7 +1,9 @@
-//! Figure 1: every stage's figure side by side, so the steps can be compared at a
-//! glance. Four columns, left to right and top to bottom in the handout's order,
-//! separated by a grey gutter.
+//! Figure 1: every stage's figure side by side, each labelled, so the steps can be
+//! compared at a glance. Four columns in the handout's order; the eighth panel is
+//! what perspective correction changes, Figure 7 against Figure 8 as a heat map.
 
+use crate::measure::figure::Figure;
+use crate::measure::plot::Canvas;
 use crate::pipeline::target::unpack;
 use crate::pipeline::Frame;
 
@@ -9,40 +11,115 @@ use crate::pipeline::Frame;
 pub const GUTTER: u32 = 8;
 /// Panels per row.
 pub const COLUMNS: u32 = 4;
-const GUTTER_RGB: [u8; 3] = [64, 64, 64];
+/// The strip under each panel that holds its label.
+pub const LABEL_HEIGHT: u32 = 28;
+const BACKGROUND: u32 = 0x0040_4040;
+const LABEL: u32 = 0x00ff_ffff;
+/// A difference of this many 8-bit steps or more is drawn white in the heat map.
+pub const HEAT_FULL_SCALE: u8 = 32;
 
-/// Lays out same-sized frames in a grid; returns (width, height, RGB rows).
-/// Returns `None` if there are no frames or their sizes differ.
-pub fn overview(frames: &[Frame]) -> Option<(u32, u32, Vec<u8>)> {
-    let first = frames.first()?;
-    let (fw, fh) = (first.width, first.height);
-    if frames.iter().any(|f| (f.width, f.height) != (fw, fh)) {
+/// One panel: an image and the words under it.
+pub struct Panel {
+    pub frame: Frame,
+    pub label: String,
+}
+
+/// Figure 1 from Figures 2 to 8, in [`Figure::FIGURES`] order. `None` if there are
+/// not seven of them or their sizes differ.
+pub fn figure_one(figures: &[Frame]) -> Option<Frame> {
+    if figures.len() != Figure::FIGURES.len() {
         return None;
     }
-    let count = frames.len() as u32;
-    let cols = count.min(COLUMNS);
-    let rows = count.div_ceil(COLUMNS);
-    let width = cols * fw + (cols - 1) * GUTTER;
-    let height = rows * fh + (rows - 1) * GUTTER;
-    let mut rgb: Vec<u8> = GUTTER_RGB
+    let mut panels: Vec<Panel> = figures
         .iter()
-        .copied()
-        .cycle()
-        .take((width * height * 3) as usize)
+        .zip(Figure::FIGURES)
+        .enumerate()
+        .map(|(i, (frame, figure))| Panel {
+            frame: frame.clone(),
+            label: format!("Figure {}: {}", i + 2, figure.label()),
+        })
         .collect();
-    for (i, frame) in frames.iter().enumerate() {
+    // Single pixels vanish when the overview is shown small: points as 3 x 3 dots.
+    panels[0].frame = dilate(&figures[0]);
+    panels.push(Panel {
+        frame: heat_map(&figures[5], &figures[6])?,
+        label: format!("7 vs 8: white = {HEAT_FULL_SCALE}+ apart"),
+    });
+    grid(&panels)
+}
+
+/// Lays out same-sized panels in a grid, each with its label beneath.
+pub fn grid(panels: &[Panel]) -> Option<Frame> {
+    let first = panels.first()?;
+    let (fw, fh) = (first.frame.width, first.frame.height);
+    if panels
+        .iter()
+        .any(|p| (p.frame.width, p.frame.height) != (fw, fh))
+    {
+        return None;
+    }
+    let count = panels.len() as u32;
+    let (cols, rows) = (count.min(COLUMNS), count.div_ceil(COLUMNS));
+    let cell_h = fh + LABEL_HEIGHT;
+    let width = cols * fw + (cols - 1) * GUTTER;
+    let height = rows * cell_h + (rows - 1) * GUTTER;
+    let mut canvas = Canvas::new(width, height, BACKGROUND);
+    for (i, panel) in panels.iter().enumerate() {
         let (col, row) = (i as u32 % COLUMNS, i as u32 / COLUMNS);
-        let (x0, y0) = (col * (fw + GUTTER), row * (fh + GUTTER));
+        let (x0, y0) = (col * (fw + GUTTER), row * (cell_h + GUTTER));
         for y in 0..fh {
-            let src = &frame.color[(y * fw) as usize..((y + 1) * fw) as usize];
-            let start = (((y0 + y) * width + x0) * 3) as usize;
-            let dst = &mut rgb[start..start + (fw * 3) as usize];
-            for (d, &c) in dst.chunks_exact_mut(3).zip(src) {
-                d.copy_from_slice(&unpack(c));
+            let src = &panel.frame.color[(y * fw) as usize..][..fw as usize];
+            let start = ((y0 + y) * width + x0) as usize;
+            canvas.frame.color[start..start + fw as usize].copy_from_slice(src);
+        }
+        // Text two font pixels a dot when it fits, else one.
+        let scale = if Canvas::text_width(&panel.label, 2) <= fw as i32 - 8 {
+            2
+        } else {
+            1
+        };
+        let text_y = (y0 + fh) as i32 + (LABEL_HEIGHT as i32 - 8 * scale) / 2;
+        canvas.text((x0 as i32 + 4, text_y), &panel.label, scale, LABEL);
+    }
+    Some(canvas.frame)
+}
+
+/// Every lit pixel grown to a 3 x 3 dot.
+fn dilate(frame: &Frame) -> Frame {
+    let mut out = frame.clone();
+    let (w, h) = (frame.width as i64, frame.height as i64);
+    for y in 0..h {
+        for x in 0..w {
+            let c = frame.color[(y * w + x) as usize];
+            if c == 0 {
+                continue;
+            }
+            for (dx, dy) in (-1..=1).flat_map(|dy| (-1..=1).map(move |dx| (dx, dy))) {
+                let (nx, ny) = (x + dx, y + dy);
+                if (0..w).contains(&nx) && (0..h).contains(&ny) {
+                    out.color[(ny * w + nx) as usize] = c;
+                }
             }
         }
     }
-    Some((width, height, rgb))
+    out
+}
+
+/// The largest channel difference of two images per pixel, from black through
+/// red and yellow to white at [`HEAT_FULL_SCALE`] steps.
+pub fn heat_map(a: &Frame, b: &Frame) -> Option<Frame> {
+    if (a.width, a.height) != (b.width, b.height) {
+        return None;
+    }
+    let mut out = Frame::new(a.width, a.height);
+    for ((o, &p), &q) in out.color.iter_mut().zip(&a.color).zip(&b.color) {
+        let (p, q) = (unpack(p), unpack(q));
+        let d = (0..3).map(|i| p[i].abs_diff(q[i])).max().unwrap_or(0);
+        let t = (d.min(HEAT_FULL_SCALE) as f32 / HEAT_FULL_SCALE as f32) * 3.0;
+        let channel = |v: f32| (v.clamp(0.0, 1.0) * 255.0).round() as u32;
+        *o = channel(t) << 16 | channel(t - 1.0) << 8 | channel(t - 2.0);
+    }
+    Some(out)
 }
 
 #[cfg(test)]
@@ -50,19 +127,51 @@ mod tests {
     use super::*;
 
     #[test]
-    fn panels_land_in_a_grid() {
-        let mut a = Frame::new(2, 2);
-        a.color[3] = 0x00ff_0000; // bottom right of panel 0
-        let mut frames = vec![a];
+    fn panels_land_in_a_grid_with_their_labels() {
+        let mut a = Frame::new(200, 2);
+        a.color[399] = 0x00ff_0000; // bottom right of panel 0
+        let mut panels = vec![Panel {
+            frame: a,
+            label: "I".into(),
+        }];
         for _ in 0..4 {
-            frames.push(Frame::new(2, 2));
+            panels.push(Panel {
+                frame: Frame::new(200, 2),
+                label: String::new(),
+            });
         }
-        let (w, h, rgb) = overview(&frames).unwrap();
-        assert_eq!((w, h), (4 * 2 + 3 * GUTTER, 2 * 2 + GUTTER));
-        let at = |x: u32, y: u32| &rgb[((y * w + x) * 3) as usize..][..3];
-        assert_eq!(at(1, 1), [255, 0, 0]);
-        assert_eq!(at(2, 0), GUTTER_RGB);
-        assert_eq!(at(0, 2 + GUTTER), [0, 0, 0]);
-        assert!(overview(&[]).is_none());
+        let f = grid(&panels).unwrap();
+        let cell = 2 + LABEL_HEIGHT;
+        assert_eq!(
+            (f.width, f.height),
+            (4 * 200 + 3 * GUTTER, 2 * cell + GUTTER)
+        );
+        assert_eq!(f.rgb(199, 1), [255, 0, 0]);
+        assert_eq!(f.rgb(200, 0), unpack(BACKGROUND), "gutter");
+        assert_eq!(f.rgb(0, cell + GUTTER), [0, 0, 0], "second row");
+        // The label "I" is drawn in white somewhere under the first panel.
+        let label_white = (2..cell).any(|y| (0..40).any(|x| f.rgb(x, y) == [255, 255, 255]));
+        assert!(label_white);
+        assert!(grid(&[]).is_none());
+    }
+
+    #[test]
+    fn heat_map_scales_the_largest_channel_difference() {
+        let mut a = Frame::new(3, 1);
+        let b = Frame::new(3, 1);
+        a.color = vec![0, 0x0000_0010, 0x0000_ff00];
+        let h = heat_map(&a, &b).unwrap();
+        assert_eq!(h.rgb(0, 0), [0, 0, 0]);
+        // 16 of 32 steps: t = 1.5, full red, half green.
+        assert_eq!(h.rgb(1, 0), [255, 128, 0]);
+        assert_eq!(h.rgb(2, 0), [255, 255, 255]);
+    }
+
+    #[test]
+    fn points_become_dots() {
+        let mut f = Frame::new(5, 5);
+        f.color[12] = 0x00ff_ffff;
+        let d = dilate(&f);
+        assert_eq!(d.color.iter().filter(|&&c| c != 0).count(), 9);
     }
 }
