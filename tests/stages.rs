@@ -8,7 +8,7 @@ use rasterlab::pipeline::raster::rows::to_pixel;
 use rasterlab::pipeline::raster::{Bounds, Viewport};
 use rasterlab::pipeline::Nothing;
 use rasterlab::StageName::*;
-use rasterlab::{cornell_box, Camera};
+use rasterlab::{cornell_box, Camera, Figure, Mesh};
 use std::collections::BTreeSet;
 
 /// The projection redone independently in f64, truncating toward zero before
@@ -274,4 +274,37 @@ fn stages_without_depth_carry_no_depth_buffer_and_the_others_do() {
     ] {
         assert_eq!(!render(stage, false).depth.is_empty(), has, "{stage:?}");
     }
+}
+
+#[test]
+fn the_ragged_seam_is_the_depth_tests_strict_greater_than() {
+    // Where the left wall meets the back wall, both reach z = 4.001. The back wall
+    // faces the camera, so its 1/z is the same f32 along each row; the left wall's
+    // is a running sum that ends within rounding of it. Section 5's test draws a
+    // pixel only if its 1/z is strictly greater, so at the shared column the wall
+    // drawn first (the left one) keeps every tie and every row where its sum
+    // rounded up: the seam follows the rounding (steps/5-depth.md).
+    let mesh = cornell_box();
+    let only = |faces: [usize; 2]| Mesh {
+        faces: faces.iter().map(|&i| mesh.faces[i]).collect(),
+        ..mesh.clone()
+    };
+    let s = rasterlab::app::Settings::default();
+    let draw = |m: &Mesh| Figure::of(Depth).render(m, &s.camera(), &s.uniforms());
+    let (left, back, both) = (
+        draw(&only([2, 3])),
+        draw(&only([8, 9])),
+        render(Depth, false),
+    );
+    let mut rows = [0usize; 2];
+    for y in 130..=370u32 {
+        let i = (y * 500 + 126) as usize;
+        let (l, b) = (left.depth[i], back.depth[i]);
+        assert!(l > 0.0 && b > 0.0, "both walls cover (126, {y})");
+        let left_kept = both.rgb(126, y) == PURPLE;
+        assert_eq!(left_kept, l >= b, "row {y}: left 1/z {l}, back {b}");
+        rows[left_kept as usize] += 1;
+    }
+    // Measured: 109 of the 241 rows keep the left wall's colour at x = 126.
+    assert!(rows[0] > 50 && rows[1] > 50, "{rows:?}");
 }
