@@ -150,7 +150,8 @@ fn to_key(k: minifb::Key) -> Option<Key> {
 
 /// The first `rasterlab-<stage>-N.png` in the current folder that does not exist.
 fn free_capture_path(view: Figure) -> PathBuf {
-    let stem = view.label().replace(" --", "-");
+    let name = view.default_file();
+    let stem = name.trim_end_matches(".png");
     (1..)
         .map(|n| PathBuf::from(format!("rasterlab-{stem}-{n}.png")))
         .find(|p| !p.exists())
