@@ -57,26 +57,46 @@ fn quick_report_writes_its_three_files() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{err}");
     assert!(
-        err.contains("[  1/23] raytrace 48x48: median"),
+        err.contains("[  1/18] raytrace 250x250: median"),
         "progress: {err}"
     );
     let md = std::fs::read_to_string(dir.join("report.md")).unwrap();
     assert!(md.starts_with("# Error against run time"), "{md}");
     assert!(
-        md.contains("| pixel-light --affine | 96 | 2 | 120 |"),
+        md.contains("| pixel-light --affine | 250 | 2 | 120 |"),
         "{md}"
+    );
+    // The answers come from the run's own numbers, and keep the full report's
+    // conclusions at this size.
+    assert!(md.contains("## What this run answers (250 x 250"), "{md}");
+    assert!(!md.contains("smaller than 250 pixels"), "{md}");
+    let rmse = |stage: &str| -> f64 {
+        let line = md
+            .lines()
+            .find(|l| l.starts_with(&format!("| {stage} | 250 | 1 |")))
+            .unwrap_or_else(|| panic!("no row for {stage}: {md}"));
+        line.split('|').nth(11).unwrap().trim().parse().unwrap()
+    };
+    let (pixel, affine, vertex) = (
+        rmse("pixel-light"),
+        rmse("pixel-light --affine"),
+        rmse("vertex-light"),
+    );
+    assert!(
+        pixel < affine && affine < vertex,
+        "{pixel} {affine} {vertex}"
     );
     let csv = std::fs::read_to_string(dir.join("report.csv")).unwrap();
     let lines: Vec<&str> = csv.lines().collect();
-    // Two sizes x (ray tracer + 7 figures) + k = 2 x 7 figures.
-    assert_eq!(lines.len(), 1 + 2 * 8 + 7, "{csv}");
+    // One size x (ray tracer, with shadows, 8 figures) + k = 2 x 8 figures.
+    assert_eq!(lines.len(), 1 + 10 + 8, "{csv}");
     let columns = lines[0].split(',').count();
     assert!(
         lines.iter().all(|l| l.split(',').count() == columns),
         "{csv}"
     );
     let (w, h, _) = rasterlab::app::image_io::read_rgb_png(&dir.join("error-vs-time.png")).unwrap();
-    assert_eq!((w, h), (1600, 940));
+    assert_eq!((w, h), (1700, 1000));
 }
 
 #[test]
