@@ -1,0 +1,123 @@
+//! The plain step programs in steps/ and the core prove each other: each program's
+//! drawing equals the core's stage, byte for byte. (Clipping and the guard band,
+//! which only the core has, never act on the default view, so nothing differs.)
+
+mod common;
+use rasterlab::app::{self, Settings};
+use rasterlab::{cornell_box, Figure, StageName};
+
+#[allow(dead_code)]
+#[path = "../steps/5-depth.rs"]
+mod depth;
+#[allow(dead_code)]
+#[path = "../steps/4-filled.rs"]
+mod filled;
+#[allow(dead_code)]
+#[path = "../steps/7-pixel-light.rs"]
+mod pixel_light;
+#[allow(dead_code)]
+#[path = "../steps/2-points.rs"]
+mod points;
+#[allow(dead_code)]
+#[path = "../steps/6-vertex-light.rs"]
+mod vertex_light;
+#[allow(dead_code)]
+#[path = "../steps/3-wireframe.rs"]
+mod wireframe;
+
+fn core(figure: Figure) -> Vec<u8> {
+    app::render(figure, &cornell_box(), &Settings::default(), None)
+        .0
+        .to_rgb8()
+}
+
+/// Asserts two 500 x 500 RGB images are equal, naming the first difference.
+fn assert_same(name: &str, plain: &[u8], core: &[u8]) {
+    assert_eq!(plain.len(), core.len(), "{name}");
+    let differing: Vec<usize> = (0..plain.len() / 3)
+        .filter(|&i| plain[3 * i..3 * i + 3] != core[3 * i..3 * i + 3])
+        .collect();
+    if let Some(&i) = differing.first() {
+        panic!(
+            "{name}: {} pixels differ, first at ({}, {}): plain {:?}, core {:?}",
+            differing.len(),
+            i % 500,
+            i / 500,
+            &plain[3 * i..3 * i + 3],
+            &core[3 * i..3 * i + 3]
+        );
+    }
+}
+
+#[test]
+fn every_step_program_draws_the_cores_figure_byte_for_byte() {
+    use StageName::*;
+    let lit = |p: bool| pixel_light::draw(p).to_rgb8();
+    for (name, plain, figure) in [
+        ("2-points", points::draw().to_rgb8(), Figure::of(Points)),
+        (
+            "3-wireframe",
+            wireframe::draw().to_rgb8(),
+            Figure::of(Wireframe),
+        ),
+        ("4-filled", filled::draw().to_rgb8(), Figure::of(Filled)),
+        ("5-depth", depth::draw().to_rgb8(), Figure::of(Depth)),
+        (
+            "6-vertex-light",
+            vertex_light::draw().to_rgb8(),
+            Figure::of(VertexLight),
+        ),
+        ("7-pixel-light", lit(true), Figure::of(PixelLight)),
+        (
+            "7-pixel-light --affine",
+            lit(false),
+            Figure::with_interpolation(PixelLight, Some(true)),
+        ),
+    ] {
+        assert_same(name, &plain, &core(figure));
+    }
+}
+
+/// Each steps/ page shows its program's difference from the previous step's, as a
+/// unified diff between `<!-- diff: A B -->` and `<!-- end diff -->`. With
+/// `RASTERLAB_UPDATE_STEPS=1` the test rewrites the blocks instead of checking them.
+#[test]
+fn each_page_shows_its_sections_diff() {
+    let steps = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("steps");
+    let update = std::env::var_os("RASTERLAB_UPDATE_STEPS").is_some();
+    let programs = [
+        "2-points",
+        "3-wireframe",
+        "4-filled",
+        "5-depth",
+        "6-vertex-light",
+        "7-pixel-light",
+    ];
+    for pair in programs.windows(2) {
+        let (before, after) = (pair[0], pair[1]);
+        let read = |name: &str| std::fs::read_to_string(steps.join(name)).unwrap();
+        let (a, b) = (read(&format!("{before}.rs")), read(&format!("{after}.rs")));
+        let diff = similar::TextDiff::from_lines(&a, &b)
+            .unified_diff()
+            .context_radius(2)
+            .header(&format!("steps/{before}.rs"), &format!("steps/{after}.rs"))
+            .to_string();
+        let block =
+            format!("<!-- diff: {before}.rs {after}.rs -->\n```diff\n{diff}```\n<!-- end diff -->");
+        let page_path = steps.join(format!("{after}.md"));
+        let page = std::fs::read_to_string(&page_path).unwrap();
+        let start = page
+            .find(&format!("<!-- diff: {before}.rs {after}.rs -->"))
+            .unwrap_or_else(|| panic!("{after}.md has no diff block"));
+        let end = page[start..].find("<!-- end diff -->").unwrap() + start + 17;
+        if update {
+            let new = format!("{}{block}{}", &page[..start], &page[end..]);
+            std::fs::write(&page_path, new).unwrap();
+        } else {
+            assert!(
+                page[start..end] == block,
+                "{after}.md's diff is stale: run RASTERLAB_UPDATE_STEPS=1 cargo test --release --test steps"
+            );
+        }
+    }
+}
