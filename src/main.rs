@@ -3,7 +3,7 @@
 use clap::parser::ValueSource;
 use clap::{ArgMatches, Args, CommandFactory, FromArgMatches, Parser, Subcommand};
 use glam::Vec3;
-use rasterlab::app::{self, controls, parse, viewer, Settings};
+use rasterlab::app::{self, controls, explain, parse, viewer, Settings};
 use rasterlab::measure::raytrace;
 use rasterlab::{Figure, StageName};
 use std::path::PathBuf;
@@ -58,6 +58,13 @@ enum Command {
     /// interpolation; c saves a PNG; h prints the keys; Esc quits. On exit the
     /// command that renders the last frame to a file is printed on stderr.
     View(ViewArgs),
+    /// Draws a stage triangle by triangle into an animated GIF, so the order of
+    /// drawing shows: Figure 4's mistake (`animate filled`) and its fix (`animate depth`).
+    Animate(AnimateArgs),
+    /// Draws the handout's algorithms on a magnified pixel grid: `explain line`
+    /// (Interpolate) and `explain rows` (ComputePolygonRows, DrawPolygonRows).
+    #[command(subcommand)]
+    Explain(Explain),
     /// Prints ComputePolygonRows for a convex polygon, as the handout's section 4 test.
     ///
     /// Example: `rasterlab rows 10,5 5,10 15,15` prints the handout's 11 rows.
@@ -138,6 +145,10 @@ struct Render {
     #[arg(long, value_name = "N", value_parser = |s: &str| parse::whole(s, 1, 100_000),
           allow_hyphen_values = true)]
     time: Option<u64>,
+    /// Write the depth buffer (1/z, scaled to grey, with a legend) instead of the
+    /// colours: depth, vertex-light and pixel-light [default file: <stage>-buffer.png]
+    #[arg(long)]
+    buffer: bool,
     #[command(flatten)]
     interpolation: InterpolationArgs,
     #[command(flatten)]
@@ -244,6 +255,64 @@ struct ViewArgs {
 }
 
 #[derive(Args, Debug)]
+struct AnimateArgs {
+    /// The stage: points, wireframe, filled, depth, vertex-light, pixel-light.
+    #[arg(value_name = "STAGE", value_parser = parse::stage)]
+    stage: StageName,
+    /// Output GIF, or - for standard output [default: <stage>.gif]
+    #[arg(short, long, value_name = "FILE", value_parser = parse::gif_path,
+          allow_hyphen_values = true)]
+    out: Option<PathBuf>,
+    /// How long each triangle shows, in milliseconds (the last image stays 2 s).
+    #[arg(long, value_name = "MS", default_value = "150",
+          value_parser = |s: &str| parse::whole(s, 10, 10_000))]
+    delay: u64,
+    #[command(flatten)]
+    interpolation: InterpolationArgs,
+    #[command(flatten)]
+    scene: SceneArgs,
+}
+
+#[derive(Subcommand, Debug)]
+enum Explain {
+    /// The pixels Interpolate gives a line from A to B (section 3), numbered.
+    ///
+    /// Example: `rasterlab explain line 4,2 1,8`, the handout's example.
+    Line(ExplainLine),
+    /// A convex polygon's edges, the pixels Interpolate puts on them, each row's
+    /// start and end, and the filled rows (section 4), with the rows printout.
+    ///
+    /// Example: `rasterlab explain rows 10,5 5,10 15,15`, the handout's example.
+    Rows(ExplainRows),
+}
+
+#[derive(Args, Debug)]
+struct ExplainLine {
+    /// The line's first pixel, X,Y.
+    #[arg(value_name = "A", value_parser = parse::point, allow_hyphen_values = true)]
+    a: (i32, i32),
+    /// The line's last pixel, X,Y.
+    #[arg(value_name = "B", value_parser = parse::point, allow_hyphen_values = true)]
+    b: (i32, i32),
+    /// Output image (.png or .bmp, or - for standard output) [default: explain-line.png]
+    #[arg(short, long, value_name = "FILE", value_parser = parse::image_path,
+          allow_hyphen_values = true)]
+    out: Option<PathBuf>,
+}
+
+#[derive(Args, Debug)]
+struct ExplainRows {
+    /// The polygon's vertices as X,Y pixels, in order (either winding); a negative
+    /// coordinate goes after `--` (`explain rows -- -3,4 ...`).
+    #[arg(required = true, value_name = "X,Y", value_parser = parse::point)]
+    vertices: Vec<(i32, i32)>,
+    /// Output image (.png or .bmp, or - for standard output) [default: explain-rows.png]
+    #[arg(short, long, value_name = "FILE", value_parser = parse::image_path,
+          allow_hyphen_values = true)]
+    out: Option<PathBuf>,
+}
+
+#[derive(Args, Debug)]
 struct RowsArgs {
     /// The polygon's vertices as X,Y pixels, in order (either winding).
     #[arg(required = true, value_name = "X,Y", value_parser = parse::point,
@@ -260,12 +329,16 @@ fn print_out(text: &str) -> Result<(), String> {
 
 fn render(stage: StageName, args: &Render) -> Result<(), String> {
     let figure = Figure::with_interpolation(stage, args.interpolation.affine());
-    let out = args
-        .out
-        .clone()
-        .unwrap_or_else(|| PathBuf::from(figure.default_file()));
+    let out = args.out.clone().unwrap_or_else(|| {
+        let name = figure.default_file();
+        PathBuf::from(match args.buffer {
+            true => name.replace(".png", "-buffer.png"),
+            false => name,
+        })
+    });
     let settings = args.scene.settings();
-    let timing = app::render_to_file(figure, &settings, &out, args.time.map(|n| n as usize))
+    let runs = args.time.map(|n| n as usize);
+    let timing = app::render_to_file(figure, &settings, &out, runs, args.buffer)
         .map_err(|e| e.to_string())?;
     if let Some(t) = timing {
         eprintln!("render: {t}");
@@ -274,14 +347,27 @@ fn render(stage: StageName, args: &Render) -> Result<(), String> {
     Ok(())
 }
 
-fn run(cli: Cli) -> Result<(), String> {
+/// Why a command failed: a bad argument found after parsing (exit code 2), or a
+/// failure while running (exit code 1).
+enum Failure {
+    Usage(String),
+    Run(String),
+}
+
+impl From<String> for Failure {
+    fn from(message: String) -> Failure {
+        Failure::Run(message)
+    }
+}
+
+fn run(cli: Cli) -> Result<(), Failure> {
     match &cli.command {
-        Command::Points(a) => render(StageName::Points, a),
-        Command::Wireframe(a) => render(StageName::Wireframe, a),
-        Command::Filled(a) => render(StageName::Filled, a),
-        Command::Depth(a) => render(StageName::Depth, a),
-        Command::VertexLight(a) => render(StageName::VertexLight, a),
-        Command::PixelLight(a) => render(StageName::PixelLight, a),
+        Command::Points(a) => Ok(render(StageName::Points, a)?),
+        Command::Wireframe(a) => Ok(render(StageName::Wireframe, a)?),
+        Command::Filled(a) => Ok(render(StageName::Filled, a)?),
+        Command::Depth(a) => Ok(render(StageName::Depth, a)?),
+        Command::VertexLight(a) => Ok(render(StageName::VertexLight, a)?),
+        Command::PixelLight(a) => Ok(render(StageName::PixelLight, a)?),
         Command::All(a) => {
             for path in app::render_all(&a.scene.settings(), &a.out).map_err(|e| e.to_string())? {
                 eprintln!("wrote {}", path.display());
@@ -329,7 +415,7 @@ fn run(cli: Cli) -> Result<(), String> {
             let (tables, failed, total) = app::stress(a.quick, |line| eprintln!("{line}"));
             print_out(&format!("{tables}\n"))?;
             if failed > 0 {
-                return Err(format!("{failed} of {total} stress cases failed"));
+                return Err(format!("{failed} of {total} stress cases failed").into());
             }
             Ok(())
         }
@@ -352,6 +438,31 @@ fn run(cli: Cli) -> Result<(), String> {
             eprintln!("view: last frame: {}", summary.reproduce());
             Ok(())
         }
+        Command::Animate(a) => {
+            let figure = Figure::with_interpolation(a.stage, a.interpolation.affine());
+            let name = figure.default_file().replace(".png", ".gif");
+            let out = a.out.clone().unwrap_or_else(|| PathBuf::from(name));
+            let settings = a.scene.settings();
+            let frames = app::animate_to_file(figure, &settings, &out, a.delay as u32)
+                .map_err(|e| e.to_string())?;
+            eprintln!("wrote {} ({frames} frames)", app::image_io::describe(&out));
+            Ok(())
+        }
+        Command::Explain(e) => {
+            let (picture, out, default) = match e {
+                Explain::Line(a) => (explain::explain_line(a.a, a.b), &a.out, "explain-line.png"),
+                Explain::Rows(a) => (
+                    explain::explain_rows(&a.vertices),
+                    &a.out,
+                    "explain-rows.png",
+                ),
+            };
+            let out = out.clone().unwrap_or_else(|| PathBuf::from(default));
+            let frame = picture.map_err(Failure::Usage)?;
+            app::image_io::write_png(&frame, &out).map_err(|e| e.to_string())?;
+            eprintln!("wrote {}", app::image_io::describe(&out));
+            Ok(())
+        }
         Command::Rows(a) => {
             print_out(&app::rows_text(&a.vertices))?;
             Ok(())
@@ -367,21 +478,30 @@ fn refuse_unused_options(command: &str, m: &ArgMatches) -> Result<(), String> {
         m.try_get_raw(id).is_ok_and(|v| v.is_some())
             && m.value_source(id) == Some(ValueSource::CommandLine)
     };
-    let stage = StageName::from_name(command);
+    let stage = match command {
+        "animate" => m.get_one::<StageName>("stage").copied(),
+        _ => StageName::from_name(command),
+    };
     let lit = matches!(stage, Some(StageName::VertexLight | StageName::PixelLight));
     let interpolates = stage.is_some_and(StageName::interpolates);
+    let what: &str = stage.map_or(command, |s| s.name());
     for id in ["affine", "interpolation"] {
         if given(id) && !interpolates {
             return Err(format!(
-                "--{id} does nothing for {command}: only vertex-light and pixel-light interpolate values that perspective correction changes"
+                "--{id} does nothing for {what}: only vertex-light and pixel-light interpolate values that perspective correction changes"
             ));
         }
+    }
+    if given("buffer") && !matches!(stage, Some(s) if s >= StageName::Depth) {
+        return Err(format!(
+            "--buffer does nothing for {command}: only depth, vertex-light and pixel-light have a depth buffer"
+        ));
     }
     let shaded = lit || (command == "raytrace" && !m.get_flag("flat"));
     for id in ["light", "light_power", "indirect"] {
         if given(id) && stage.is_some() && !shaded {
             return Err(format!(
-                "--{} does nothing for {command}: only vertex-light and pixel-light are lit",
+                "--{} does nothing for {what}: only vertex-light and pixel-light are lit",
                 id.replace('_', "-")
             ));
         }
@@ -431,7 +551,11 @@ fn main() -> ExitCode {
     }
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
-        Err(message) => {
+        Err(Failure::Usage(message)) => {
+            eprintln!("error: {message} (see 'rasterlab --help')");
+            ExitCode::from(2)
+        }
+        Err(Failure::Run(message)) => {
             eprintln!("error: {message}");
             ExitCode::from(1)
         }

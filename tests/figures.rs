@@ -59,3 +59,73 @@ fn committed_figures_match_the_code() {
         &overview.to_rgb8(),
     );
 }
+
+fn docs() -> std::path::PathBuf {
+    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/docs")).to_path_buf()
+}
+
+/// Compares a picture with a committed PNG anywhere in the repository.
+fn assert_picture(path: &Path, frame: &rasterlab::Frame) {
+    let (w, h, committed) = read_rgb_png(path).unwrap_or_else(|e| panic!("{e}"));
+    let rgb = frame.to_rgb8();
+    assert!(
+        (w, h) == (frame.width, frame.height) && committed == rgb,
+        "{} is stale: redraw it with the command on its page",
+        path.display()
+    );
+}
+
+/// The pictures of the algorithms in steps/ and docs/, each redrawn by the code it
+/// comes from (the commands are on the pages that show them).
+#[test]
+fn committed_pictures_match_the_code() {
+    use rasterlab::app::explain::{explain_line, explain_rows};
+    let steps = steps();
+    // rasterlab explain line 4,2 1,8; rasterlab explain rows 10,5 5,10 15,15
+    assert_picture(
+        &steps.join("explain-line.png"),
+        &explain_line((4, 2), (1, 8)).unwrap(),
+    );
+    assert_picture(
+        &steps.join("explain-rows.png"),
+        &explain_rows(&[(10, 5), (5, 10), (15, 15)]).unwrap(),
+    );
+    // rasterlab depth --buffer
+    let (depth, _) = app::render(
+        Figure::of(rasterlab::StageName::Depth),
+        &cornell_box(),
+        &Settings::default(),
+        None,
+    );
+    assert_picture(
+        &steps.join("depth-buffer.png"),
+        &app::depth_buffer_picture(&depth),
+    );
+    // rasterlab report: the heat maps (deterministic, unlike its times)
+    let plan = rasterlab::measure::report::Plan::full();
+    for (name, picture) in rasterlab::measure::report::heat_maps(&plan) {
+        assert_picture(&docs().join("report").join(name), &picture);
+    }
+}
+
+/// rasterlab animate filled; rasterlab animate depth: the GIFs byte for byte.
+#[test]
+fn committed_animations_match_the_code() {
+    let dir = std::env::temp_dir().join(format!("rasterlab-test-{}-gif", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for stage in [rasterlab::StageName::Filled, rasterlab::StageName::Depth] {
+        let name = format!("animate-{}.gif", stage.name());
+        let out = dir.join(&name);
+        app::animate_to_file(Figure::of(stage), &Settings::default(), &out, 150).unwrap();
+        let (made, committed) = (
+            std::fs::read(&out).unwrap(),
+            std::fs::read(steps().join(&name)).unwrap(),
+        );
+        assert!(
+            made == committed,
+            "steps/{name} is stale: rasterlab animate {} -o steps/{name}",
+            stage.name()
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

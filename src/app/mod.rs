@@ -3,12 +3,14 @@
 //! Figure 1, and the viewer.
 
 pub mod controls;
+pub mod explain;
 pub mod image_io;
 pub mod overview;
 pub mod parse;
 pub mod viewer;
 
 use crate::measure::figure::Figure;
+use crate::measure::plot::Canvas;
 use crate::measure::timing::{time_runs, Timing};
 use crate::measure::{raytrace, report, stress};
 use crate::pipeline::camera::DEFAULT_NEAR;
@@ -110,16 +112,134 @@ pub fn render(
     (frame, timing)
 }
 
-/// Draws `figure` of the Cornell box and writes it to `out`.
+/// Draws `figure` of the Cornell box and writes it to `out`: its colours, or with
+/// `buffer` its depth buffer as [`depth_buffer_picture`] shows it.
 pub fn render_to_file(
     figure: Figure,
     settings: &Settings,
     out: &Path,
     runs: Option<usize>,
+    buffer: bool,
 ) -> Result<Option<Timing>, WriteError> {
     let (frame, timing) = render(figure, &cornell_box(), settings, runs);
-    write_png(&frame, out)?;
+    match buffer {
+        true => write_png(&depth_buffer_picture(&frame), out)?,
+        false => write_png(&frame, out)?,
+    }
     Ok(timing)
+}
+
+/// The image built up triangle by triangle: frame i shows the first i triangles of
+/// `mesh` drawn (about `max_frames` frames: several triangles a frame for larger
+/// meshes), so the order of drawing can be seen, Figure 4's mistake included.
+pub fn build_up(figure: Figure, mesh: &Mesh, settings: &Settings, max_frames: usize) -> Vec<Frame> {
+    let faces = mesh.faces.len();
+    let per_frame = faces.div_ceil(max_frames.max(1)).max(1);
+    let mut frames = Vec::new();
+    let mut pipeline = figure.pipeline();
+    let (camera, uniforms) = (settings.camera(), settings.uniforms());
+    let mut k = 0;
+    while k < faces {
+        k = (k + per_frame).min(faces);
+        let prefix = Mesh {
+            faces: mesh.faces[..k].to_vec(),
+            ..mesh.clone()
+        };
+        let mut frame = Frame::default();
+        pipeline.render(&prefix, &camera, &uniforms, &mut frame);
+        frames.push(frame);
+    }
+    frames
+}
+
+/// `rasterlab animate`: [`build_up`] of the Cornell box written as a GIF that
+/// shows each triangle for `delay_ms` and the finished image for two seconds.
+pub fn animate_to_file(
+    figure: Figure,
+    settings: &Settings,
+    out: &Path,
+    delay_ms: u32,
+) -> Result<usize, WriteError> {
+    let frames = build_up(figure, &cornell_box(), settings, 60);
+    let fail = |e: image::ImageError| WriteError {
+        path: out.to_path_buf(),
+        reason: e.to_string(),
+    };
+    let mut bytes = Vec::new();
+    {
+        let mut encoder = image::codecs::gif::GifEncoder::new_with_speed(&mut bytes, 10);
+        encoder
+            .set_repeat(image::codecs::gif::Repeat::Infinite)
+            .map_err(fail)?;
+        let last = frames.len().saturating_sub(1);
+        for (i, frame) in frames.iter().enumerate() {
+            let rgba: Vec<u8> = frame
+                .to_rgb8()
+                .chunks_exact(3)
+                .flat_map(|p| [p[0], p[1], p[2], 255])
+                .collect();
+            let image = image::RgbaImage::from_raw(frame.width, frame.height, rgba)
+                .expect("a frame's size matches its pixels");
+            let ms = if i == last { 2000 } else { delay_ms };
+            let delay = image::Delay::from_numer_denom_ms(ms, 1);
+            encoder
+                .encode_frame(image::Frame::from_parts(image, 0, 0, delay))
+                .map_err(fail)?;
+        }
+    }
+    image_io::write_bytes(out, &bytes)?;
+    Ok(frames.len())
+}
+
+/// The depth buffer of `frame` as a picture: 1/z scaled linearly from the
+/// smallest drawn value (dark grey, farthest) to the largest (white, nearest),
+/// black where nothing was drawn (1/z = 0), with a legend strip beneath.
+pub fn depth_buffer_picture(frame: &Frame) -> Frame {
+    let drawn = frame
+        .depth
+        .iter()
+        .copied()
+        .filter(|&z| z > 0.0 && z.is_finite());
+    let (lo, hi) = drawn.fold((f32::INFINITY, 0.0f32), |(lo, hi), z| {
+        (lo.min(z), hi.max(z))
+    });
+    let grey = |zinv: f32| -> u32 {
+        if !(zinv > 0.0 && zinv.is_finite()) {
+            return 0;
+        }
+        let t = if hi > lo {
+            (zinv - lo) / (hi - lo)
+        } else {
+            1.0
+        };
+        let v = (64.0 + 191.0 * t).round() as u32;
+        v << 16 | v << 8 | v
+    };
+    let (w, h) = (frame.width, frame.height);
+    let legend = 64;
+    let mut c = Canvas::new(w.max(360), h + legend, 0x00ff_ffff);
+    for y in 0..h {
+        for x in 0..w {
+            let i = (y * w + x) as usize;
+            let zinv = frame.depth.get(i).copied().unwrap_or(0.0);
+            c.frame.color[(y * c.frame.width + x) as usize] = grey(zinv);
+        }
+    }
+    if hi > 0.0 {
+        let bar = (c.frame.width as i32 - 24).max(1);
+        for i in 0..bar {
+            let zinv = lo + (hi - lo) * i as f32 / bar as f32;
+            c.rect((12 + i, h as i32 + 8), (1, 16), grey(zinv));
+        }
+        let ends = format!(
+            "far 1/z {lo:.3} (z {:.2})   near 1/z {hi:.3} (z {:.2})",
+            1.0 / lo,
+            1.0 / hi
+        );
+        c.text((12, h as i32 + 30), &ends, 1, 0);
+        c.text((12, h as i32 + 44), "black: nothing drawn (1/z = 0)", 1, 0);
+    }
+    c.frame
 }
 
 /// The overview's file name.
@@ -227,7 +347,13 @@ pub fn report(
     write_text(&md, &text)?;
     write_text(&csv, &report::csv(&rows))?;
     write_png(&report::plot(&rows, &plan), &png)?;
-    Ok(vec![md, csv, png])
+    let mut written = vec![md, csv, png];
+    for (name, picture) in report::heat_maps(&plan) {
+        let path = dir.join(name);
+        write_png(&picture, &path)?;
+        written.push(path);
+    }
+    Ok(written)
 }
 
 /// `rasterlab stress`: runs the catalogue, progress to `progress`; returns the

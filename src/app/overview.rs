@@ -3,8 +3,8 @@
 //! what perspective correction changes, Figure 7 against Figure 8 as a heat map.
 
 use crate::measure::figure::Figure;
+use crate::measure::heat::{heat_map, HEAT_FULL_SCALE};
 use crate::measure::plot::Canvas;
-use crate::pipeline::target::unpack;
 use crate::pipeline::Frame;
 
 /// Gutter between panels, in pixels.
@@ -15,8 +15,6 @@ pub const COLUMNS: u32 = 4;
 pub const LABEL_HEIGHT: u32 = 28;
 const BACKGROUND: u32 = 0x0040_4040;
 const LABEL: u32 = 0x00ff_ffff;
-/// A difference of this many 8-bit steps or more is drawn white in the heat map.
-pub const HEAT_FULL_SCALE: u8 = 32;
 
 /// One panel: an image and the words under it.
 pub struct Panel {
@@ -105,26 +103,10 @@ fn dilate(frame: &Frame) -> Frame {
     out
 }
 
-/// The largest channel difference of two images per pixel, from black through
-/// red and yellow to white at [`HEAT_FULL_SCALE`] steps.
-pub fn heat_map(a: &Frame, b: &Frame) -> Option<Frame> {
-    if (a.width, a.height) != (b.width, b.height) {
-        return None;
-    }
-    let mut out = Frame::new(a.width, a.height);
-    for ((o, &p), &q) in out.color.iter_mut().zip(&a.color).zip(&b.color) {
-        let (p, q) = (unpack(p), unpack(q));
-        let d = (0..3).map(|i| p[i].abs_diff(q[i])).max().unwrap_or(0);
-        let t = (d.min(HEAT_FULL_SCALE) as f32 / HEAT_FULL_SCALE as f32) * 3.0;
-        let channel = |v: f32| (v.clamp(0.0, 1.0) * 255.0).round() as u32;
-        *o = channel(t) << 16 | channel(t - 1.0) << 8 | channel(t - 2.0);
-    }
-    Some(out)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::pipeline::target::unpack;
 
     #[test]
     fn panels_land_in_a_grid_with_their_labels() {
@@ -153,18 +135,6 @@ mod tests {
         let label_white = (2..cell).any(|y| (0..40).any(|x| f.rgb(x, y) == [255, 255, 255]));
         assert!(label_white);
         assert!(grid(&[]).is_none());
-    }
-
-    #[test]
-    fn heat_map_scales_the_largest_channel_difference() {
-        let mut a = Frame::new(3, 1);
-        let b = Frame::new(3, 1);
-        a.color = vec![0, 0x0000_0010, 0x0000_ff00];
-        let h = heat_map(&a, &b).unwrap();
-        assert_eq!(h.rgb(0, 0), [0, 0, 0]);
-        // 16 of 32 steps: t = 1.5, full red, half green.
-        assert_eq!(h.rgb(1, 0), [255, 128, 0]);
-        assert_eq!(h.rgb(2, 0), [255, 255, 255]);
     }
 
     #[test]

@@ -97,6 +97,22 @@ pub fn image_path(s: &str) -> Result<std::path::PathBuf, String> {
     }
 }
 
+/// Where an animation goes: a `.gif` file, or - for standard output.
+pub fn gif_path(s: &str) -> Result<std::path::PathBuf, String> {
+    let path = std::path::PathBuf::from(s);
+    let gif = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("gif"));
+    if s == "-" || gif {
+        Ok(path)
+    } else {
+        Err(format!(
+            "an animation is a GIF: name the file .gif, got '{s}'"
+        ))
+    }
+}
+
 /// The largest coordinate `rasterlab rows` takes, so a polygon's rows always fit.
 pub const MAX_ROWS_COORDINATE: i32 = 10_000;
 

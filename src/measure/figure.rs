@@ -6,8 +6,8 @@ use crate::pipeline::{
     Points, Render, Stage, Uniforms, VertexLight, Wireframe,
 };
 
-/// The stages, as the command line and the viewer name them.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+/// The stages, as the command line and the viewer name them, in the handout's order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum StageName {
     Points,
     Wireframe,

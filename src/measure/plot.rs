@@ -37,6 +37,15 @@ impl Canvas {
         }
     }
 
+    /// A filled rectangle with its top-left corner at `at`.
+    pub fn rect(&mut self, at: (i32, i32), size: (i32, i32), color: Rgb) {
+        for y in at.1..at.1 + size.1 {
+            for x in at.0..at.0 + size.0 {
+                self.put(x, y, color);
+            }
+        }
+    }
+
     /// A line `width` pixels thick (drawn as parallel one-pixel lines).
     pub fn line(&mut self, a: (i32, i32), b: (i32, i32), color: Rgb, width: i32) {
         let steep = (b.1 - a.1).abs() > (b.0 - a.0).abs();

@@ -3,6 +3,7 @@
 //! an error-against-time plot.
 
 use crate::measure::figure::{Figure, StageName};
+use crate::measure::heat::heat_map_picture;
 use crate::measure::metrics::{
     differing_fraction, edge_pixels_within_one_pixel, image_error, interior_mask,
     points_within_one_pixel, ImageError,
@@ -428,14 +429,47 @@ pub fn markdown(rows: &[Row], plan: &Plan, machine: &str) -> String {
     out
 }
 
+/// The size the conclusions and heat maps are given at: 500 when measured, else
+/// the largest size.
+fn conclusion_size(plan: &Plan) -> u32 {
+    if plan.sizes.contains(&500) {
+        500
+    } else {
+        plan.sizes.iter().copied().max().unwrap_or(500)
+    }
+}
+
+/// Where each lit stage differs from the ray tracer, and Figure 7 from Figure 8,
+/// as heat maps at the conclusion size: (file name, picture).
+pub fn heat_maps(plan: &Plan) -> Vec<(String, Frame)> {
+    let size = conclusion_size(plan);
+    let (mesh, camera, light) = (cornell_box(), camera_for(size), Light::handout());
+    let uniforms = Uniforms { light };
+    let reference = raytrace(&mesh, &camera, &light, &Options::default()).frame;
+    let mut out = Vec::new();
+    let lit = measured_figures()
+        .into_iter()
+        .filter(|f| f.stage.interpolates());
+    for figure in lit {
+        let frame = figure.render(&mesh, &camera, &uniforms);
+        let title = format!("{} against the ray tracer, {size}x{size}", figure.label());
+        let name = format!("heat-{}", figure.default_file());
+        out.extend(heat_map_picture(&frame, &reference, &title).map(|p| (name, p)));
+    }
+    let seven = Figure::of(StageName::PixelLight).render(&mesh, &camera, &uniforms);
+    let eight = Figure::with_interpolation(StageName::PixelLight, Some(true))
+        .render(&mesh, &camera, &uniforms);
+    let title = "Figure 7 against Figure 8: what perspective correction changes";
+    out.extend(
+        heat_map_picture(&seven, &eight, title).map(|p| ("heat-fig7-vs-fig8.png".into(), p)),
+    );
+    out
+}
+
 /// The handout's questions answered from this run's own numbers, at 500 x 500 when
 /// measured (else the largest size), on the plain box.
 pub fn conclusions(rows: &[Row], plan: &Plan) -> String {
-    let size = if plan.sizes.contains(&500) {
-        500
-    } else {
-        plan.sizes.iter().copied().max().unwrap_or(0)
-    };
+    let size = conclusion_size(plan);
     let find = |stage: &str| {
         rows.iter()
             .find(|r| r.stage == stage && r.size == size && r.k == 1)

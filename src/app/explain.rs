@@ -1,0 +1,272 @@
+//! `rasterlab explain`: pictures of the handout's algorithms on a magnified pixel
+//! grid, so what `Interpolate` and `ComputePolygonRows` do can be seen, not only
+//! read.
+//!
+//! - `explain line A B`: the pixels `Interpolate` gives a line (section 3), numbered
+//!   in order, over the exact segment.
+//! - `explain rows A B C ...`: a polygon's exact edges, the pixels `Interpolate` puts
+//!   on each edge, each row's start and end, and the filled rows (section 4), with
+//!   the printout of `rasterlab rows` beside them.
+
+use crate::measure::plot::{Canvas, Rgb, BLACK, DARK, GREY};
+use crate::pipeline::interpolate::{line_pixels, Pixel, Steps};
+use crate::pipeline::raster::rows::{compute_polygon_rows, draw_polygon_rows, Rows};
+use crate::pipeline::raster::Bounds;
+use crate::pipeline::Frame;
+
+/// The largest grid `explain` draws, in pixels of the explained image per side.
+pub const MAX_EXTENT: i32 = 64;
+
+const WHITE: Rgb = 0x00ff_ffff;
+const FILLED: Rgb = 0x00c6_dbef;
+const ROW_END: Rgb = 0x0031_82bd;
+const EXACT: Rgb = 0x00d9_5f02;
+/// One colour per edge, for the pixels `Interpolate` puts on it.
+const EDGE_COLORS: [Rgb; 5] = [
+    0x001b_9e77,
+    0x0075_70b3,
+    0x00e7_298a,
+    0x0066_a61e,
+    0x00e6_ab02,
+];
+
+/// The grid around a set of pixels: which pixels it shows and how big a cell is.
+struct Grid {
+    min: (i32, i32),
+    cells: (i32, i32),
+    cell: i32,
+    origin: (i32, i32),
+}
+
+impl Grid {
+    fn around(points: &[(i32, i32)]) -> Result<Grid, String> {
+        let xs = points.iter().map(|p| p.0);
+        let ys = points.iter().map(|p| p.1);
+        let (x0, x1) = (xs.clone().min().unwrap_or(0), xs.max().unwrap_or(0));
+        let (y0, y1) = (ys.clone().min().unwrap_or(0), ys.max().unwrap_or(0));
+        let cells = (x1 - x0 + 3, y1 - y0 + 3); // a free cell on each side
+        if cells.0 > MAX_EXTENT + 2 || cells.1 > MAX_EXTENT + 2 {
+            return Err(format!(
+                "the points span {} x {} pixels; explain draws at most {MAX_EXTENT} x {MAX_EXTENT}",
+                x1 - x0 + 1,
+                y1 - y0 + 1
+            ));
+        }
+        let cell = (640 / cells.0.max(cells.1)).clamp(10, 48);
+        Ok(Grid {
+            min: (x0 - 1, y0 - 1),
+            cells,
+            cell,
+            origin: (56, 56),
+        })
+    }
+
+    fn size(&self) -> (i32, i32) {
+        (self.cells.0 * self.cell, self.cells.1 * self.cell)
+    }
+
+    /// The top-left corner of pixel (x, y)'s cell.
+    fn corner(&self, x: i32, y: i32) -> (i32, i32) {
+        (
+            self.origin.0 + (x - self.min.0) * self.cell,
+            self.origin.1 + (y - self.min.1) * self.cell,
+        )
+    }
+
+    /// The centre of pixel (x, y)'s cell.
+    fn centre(&self, x: i32, y: i32) -> (i32, i32) {
+        let (cx, cy) = self.corner(x, y);
+        (cx + self.cell / 2, cy + self.cell / 2)
+    }
+
+    fn fill(&self, c: &mut Canvas, x: i32, y: i32, color: Rgb) {
+        let (cx, cy) = self.corner(x, y);
+        c.rect((cx + 1, cy + 1), (self.cell - 1, self.cell - 1), color);
+    }
+
+    /// A dot in the middle of pixel (x, y)'s cell.
+    fn dot(&self, c: &mut Canvas, x: i32, y: i32, color: Rgb) {
+        let (cx, cy) = self.centre(x, y);
+        let r = (self.cell / 5).max(2);
+        c.rect((cx - r, cy - r), (2 * r + 1, 2 * r + 1), color);
+    }
+
+    /// Cell borders, and every fifth coordinate along the top and left.
+    fn draw_lines(&self, c: &mut Canvas) {
+        let (w, h) = self.size();
+        let (ox, oy) = self.origin;
+        for i in 0..=self.cells.0 {
+            let x = ox + i * self.cell;
+            c.line((x, oy), (x, oy + h), GREY, 1);
+        }
+        for j in 0..=self.cells.1 {
+            let y = oy + j * self.cell;
+            c.line((ox, y), (ox + w, y), GREY, 1);
+        }
+        for i in 0..self.cells.0 {
+            let x = self.min.0 + i;
+            if x % 5 == 0 {
+                let (cx, _) = self.centre(x, 0);
+                let s = x.to_string();
+                c.text((cx - Canvas::text_width(&s, 1) / 2, oy - 14), &s, 1, DARK);
+            }
+        }
+        for j in 0..self.cells.1 {
+            let y = self.min.1 + j;
+            if y % 5 == 0 {
+                let (_, cy) = self.centre(0, y);
+                let s = y.to_string();
+                c.text((ox - 8 - Canvas::text_width(&s, 1), cy - 4), &s, 1, DARK);
+            }
+        }
+    }
+}
+
+/// A canvas holding the grid and, on its right, `text` (one line per row).
+fn canvas_for(grid: &Grid, title: &str, text: &[String]) -> Canvas {
+    let (w, h) = grid.size();
+    let text_w = text
+        .iter()
+        .map(|l| Canvas::text_width(l, 1))
+        .max()
+        .unwrap_or(0);
+    let width = grid.origin.0 + w + 40 + text_w + 24;
+    let height = (grid.origin.1 + h + 24).max(grid.origin.1 + 12 * text.len() as i32 + 24);
+    let mut c = Canvas::new(width as u32, height as u32, WHITE);
+    c.text((grid.origin.0, 12), title, 2, BLACK);
+    for (i, line) in text.iter().enumerate() {
+        c.text(
+            (grid.origin.0 + w + 40, grid.origin.1 + 12 * i as i32),
+            line,
+            1,
+            BLACK,
+        );
+    }
+    c
+}
+
+/// `explain line A B`: `Interpolate`'s `max(|dx|, |dy|) + 1` pixels from `a` to
+/// `b`, numbered, over the exact segment between the two pixels' centres.
+pub fn explain_line(a: (i32, i32), b: (i32, i32)) -> Result<Frame, String> {
+    let (pa, pb) = (Pixel::at(a.0, a.1), Pixel::at(b.0, b.1));
+    let n = line_pixels(&pa, &pb);
+    let pixels: Vec<(i32, i32)> = Steps::new(pa, pb, n).map(|p| (p.x, p.y)).collect();
+    let grid = Grid::around(&[a, b])?;
+    let mut text = vec![format!(
+        "Interpolate({},{} -> {},{}), {n} pixels:",
+        a.0, a.1, b.0, b.1
+    )];
+    text.extend(
+        pixels
+            .iter()
+            .enumerate()
+            .map(|(i, p)| format!("{i}: ({},{})", p.0, p.1)),
+    );
+    text.extend(
+        [
+            "",
+            "cells: the pixels, numbered in order",
+            "line: the exact segment, centre to centre",
+        ]
+        .map(String::from),
+    );
+    let mut c = canvas_for(&grid, "Interpolate: the pixels of a line", &text);
+    for &(x, y) in &pixels {
+        grid.fill(&mut c, x, y, FILLED);
+    }
+    grid.draw_lines(&mut c);
+    c.line(grid.centre(a.0, a.1), grid.centre(b.0, b.1), EXACT, 2);
+    for (i, &(x, y)) in pixels.iter().enumerate() {
+        let (cx, cy) = grid.corner(x, y);
+        if grid.cell >= 16 {
+            c.text((cx + 3, cy + 3), &i.to_string(), 1, BLACK);
+        }
+    }
+    Ok(c.frame)
+}
+
+/// `explain rows A B C ...`: the polygon's exact edges, the pixels `Interpolate`
+/// puts on each edge (a dot in the edge's colour), each row's start and end (dark
+/// cells) and the filled rows (light cells), with `rows_text` beside them.
+pub fn explain_rows(vertices: &[(i32, i32)]) -> Result<Frame, String> {
+    let grid = Grid::around(vertices)?;
+    let pixels: Vec<Pixel<_>> = vertices.iter().map(|&(x, y)| Pixel::at(x, y)).collect();
+    let mut rows = Rows::new();
+    compute_polygon_rows(&pixels, &Bounds::unbounded(), &mut rows);
+    let mut text = vec![format!("ComputePolygonRows, {} rows:", rows.len())];
+    text.extend(super::rows_text(vertices).lines().map(String::from));
+    text.extend(
+        [
+            "",
+            "light cells: the rows DrawPolygonRows fills",
+            "dark cells: each row's start and end",
+            "dots: the pixels Interpolate gives each edge",
+            "(one colour per edge, vertex i to i + 1)",
+            "line: the exact edge, centre to centre",
+        ]
+        .map(String::from),
+    );
+    let mut c = canvas_for(&grid, "ComputePolygonRows and DrawPolygonRows", &text);
+    draw_polygon_rows(&rows, &Bounds::unbounded(), |p| {
+        grid.fill(&mut c, p.x, p.y, FILLED)
+    });
+    for (l, r) in rows.left.iter().zip(&rows.right) {
+        if l.x <= r.x {
+            grid.fill(&mut c, l.x, l.y, ROW_END);
+            grid.fill(&mut c, r.x, r.y, ROW_END);
+        }
+    }
+    grid.draw_lines(&mut c);
+    let n = vertices.len();
+    for i in 0..n {
+        let (a, b) = (vertices[i], vertices[(i + 1) % n]);
+        c.line(grid.centre(a.0, a.1), grid.centre(b.0, b.1), EXACT, 2);
+    }
+    for i in 0..n {
+        let (a, b) = (pixels[i], pixels[(i + 1) % n]);
+        let color = EDGE_COLORS[i % EDGE_COLORS.len()];
+        for p in Steps::new(a, b, line_pixels(&a, &b)) {
+            grid.dot(&mut c, p.x, p.y, color);
+        }
+    }
+    Ok(c.frame)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_handouts_line_is_four_numbered_pixels() {
+        let f = explain_line((4, 2), (1, 8)).unwrap();
+        // Grid from (0, 1) to (5, 9), 9 cells high: 640 / 9 = 71, clamped to 48.
+        let grid = Grid::around(&[(4, 2), (1, 8)]).unwrap();
+        assert_eq!(grid.cell, 48);
+        let filled = |x: i32, y: i32| {
+            let (cx, cy) = grid.corner(x, y);
+            f.color[((cy + 40) as u32 * f.width + (cx + 40) as u32) as usize] == FILLED
+        };
+        for (x, y) in [(4, 2), (3, 4), (2, 6), (1, 8)] {
+            assert!(filled(x, y), "({x}, {y})");
+        }
+        assert!(!filled(4, 3) && !filled(1, 7));
+    }
+
+    #[test]
+    fn rows_mark_every_row_end_and_refuse_huge_polygons() {
+        let f = explain_rows(&[(10, 5), (5, 10), (15, 15)]).unwrap();
+        let grid = Grid::around(&[(10, 5), (5, 10), (15, 15)]).unwrap();
+        let at = |x: i32, y: i32| {
+            let (cx, cy) = grid.corner(x, y);
+            f.color[((cy + 2) as u32 * f.width + (cx + 2) as u32) as usize]
+        };
+        // The handout's first rows: (10,5)-(10,5), (9,6)-(10,6); the last (15,15).
+        assert_eq!(at(10, 5), ROW_END);
+        assert_eq!(at(9, 6), ROW_END);
+        assert_eq!(at(10, 6), ROW_END);
+        assert_eq!(at(11, 6), WHITE);
+        assert_eq!(at(15, 15), ROW_END);
+        assert_eq!(at(4, 10), WHITE, "outside the polygon");
+        assert!(explain_rows(&[(0, 0), (100, 0), (0, 5)]).is_err());
+    }
+}
