@@ -72,7 +72,7 @@ fn draw(view: Figure, scene: &[Triangle], camera: &Camera) -> Frame {
 fn draw_in_bands(view: Figure, scene: &[Triangle], camera: &Camera, split: u32) -> Frame {
     let mesh = Mesh::from_triangles(scene);
     let mut whole = Frame::default();
-    let mut pipeline = view.pipeline();
+    let mut pipeline = view.pipeline_for(&mesh);
     pipeline.render(&mesh, camera, &uniforms(), &mut whole); // sizes the buffers
     let (w, h) = (camera.width, camera.height);
     let split = split.min(h);
@@ -134,7 +134,7 @@ proptest! {
         let (mesh, other) = (Mesh::from_triangles(&scene), Mesh::from_triangles(&other));
         let reused = std::thread::scope(|s| {
             s.spawn(|| {
-                let mut pipeline = view.pipeline();
+                let mut pipeline = view.pipeline_for(&mesh);
                 let mut frame = Frame::default();
                 let mut bigger = camera;
                 bigger.width += 7;

@@ -38,6 +38,7 @@ fn the_front_edges_of_the_box_land_on_the_image_borders() {
         let viewport = Viewport {
             half_width: 250,
             half_height: 250,
+            centre: (250.0, 250.0),
             bounds: Bounds::unbounded(),
         };
         let vertex = ScreenVertex {

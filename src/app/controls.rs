@@ -339,10 +339,7 @@ mod tests {
         );
         assert_eq!(
             action(Key::Char('7')),
-            Some(Action::Show(Figure {
-                stage: StageName::PixelLight,
-                affine: true
-            }))
+            Some(Action::Show(Figure::with_interpolation(StageName::PixelLight, Some(true))))
         );
         assert_eq!(action(Key::Char('8')), None);
         assert_eq!(action(Key::Char('p')), Some(Action::TogglePerspective));

@@ -104,7 +104,7 @@ pub fn render(
     runs: Option<usize>,
 ) -> (Frame, Option<Timing>) {
     let (camera, uniforms) = (settings.camera(), settings.uniforms());
-    let mut pipeline = figure.pipeline();
+    let mut pipeline = figure.pipeline_for(mesh);
     let mut frame = Frame::default();
     pipeline.render(mesh, &camera, &uniforms, &mut frame);
     let timing =
@@ -136,7 +136,7 @@ pub fn build_up(figure: Figure, mesh: &Mesh, settings: &Settings, max_frames: us
     let faces = mesh.faces.len();
     let per_frame = faces.div_ceil(max_frames.max(1)).max(1);
     let mut frames = Vec::new();
-    let mut pipeline = figure.pipeline();
+    let mut pipeline = figure.pipeline_for(mesh);
     let (camera, uniforms) = (settings.camera(), settings.uniforms());
     let mut k = 0;
     while k < faces {

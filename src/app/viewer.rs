@@ -189,7 +189,7 @@ pub fn run(options: Options) -> Result<Summary, String> {
     let controls = Controls::default();
     let mut settings = options.settings;
     let mut view = options.view;
-    let mut pipeline: Box<dyn Render> = view.pipeline();
+    let mut pipeline: Box<dyn Render> = view.pipeline_for(&scene);
     let mut frame = Frame::default();
     let mut held_before: Vec<Key> = Vec::new();
     let mut mouse = MouseLook::default();
@@ -228,11 +228,11 @@ pub fn run(options: Options) -> Result<Summary, String> {
             match action(key) {
                 Some(Action::Show(v)) => {
                     view = v;
-                    pipeline = view.pipeline();
+                    pipeline = view.pipeline_for(&scene);
                 }
                 Some(Action::TogglePerspective) => {
                     view = controls::toggle_perspective(view);
-                    pipeline = view.pipeline();
+                    pipeline = view.pipeline_for(&scene);
                 }
                 Some(Action::Save) => save(&frame, &free_capture_path(view))?,
                 Some(Action::Help) => eprintln!("{}", controls::HELP),
@@ -298,10 +298,7 @@ mod tests {
             camera: glam::Vec3::new(-0.1, 0.2, -2.9),
             ..Settings::default()
         };
-        let view = Figure {
-            stage: StageName::PixelLight,
-            affine: true,
-        };
+        let view = Figure::with_interpolation(StageName::PixelLight, Some(true));
         assert_eq!(
             command_for(view, &s),
             "rasterlab pixel-light --affine --size 500x500 --focal 500 --camera -0.1,0.2,-2.9 \

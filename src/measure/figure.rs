@@ -1,6 +1,9 @@
 //! The stages by name, and the handout's figures as (stage, interpolation) pairs:
 //! the one place that turns a choice made at run time into a pipeline type.
 
+use crate::pipeline::draw::Cull;
+use crate::pipeline::raster::{EdgeRaster, Rasterizer, RowRaster};
+use crate::pipeline::stage::SmoothPixelLight;
 use crate::pipeline::{
     Affine, Camera, Depth, Filled, Frame, Interpolation, Mesh, Perspective, Pipeline, PixelLight,
     Points, Render, Stage, Uniforms, VertexLight, Wireframe,
@@ -57,39 +60,63 @@ impl StageName {
     }
 }
 
-/// A stage and whether its per-pixel struct is interpolated affinely (linearly on
-/// the screen) or perspective-correctly: one of the handout's figures, or a
+/// Which rasterizer draws: the handout's rows (`--raster rows`, the default) or
+/// the exact edge-function rasterizer (`--raster edge`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Raster {
+    #[default]
+    Rows,
+    Edge,
+}
+
+/// A stage and how it is drawn: whether its per-pixel struct is interpolated
+/// affinely (linearly on the screen) or perspective-correctly, by which
+/// rasterizer, and which faces are culled. One of the handout's figures, or a
 /// variation of one.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Figure {
     pub stage: StageName,
     /// Only meaningful where [`StageName::interpolates`]; false elsewhere.
     pub affine: bool,
+    pub raster: Raster,
+    pub cull: Cull,
 }
 
-/// Something to do with a pipeline once its stage and interpolation types are known.
+/// Something to do with a pipeline once its stage, interpolation and rasterizer
+/// types are known.
 pub trait WithStage {
     type Output;
-    fn with<S: Stage, I: Interpolation>(self) -> Self::Output;
+    fn with<S: Stage, I: Interpolation, R: Rasterizer>(self) -> Self::Output;
 }
 
-fn with_interpolation<I: Interpolation, W: WithStage>(stage: StageName, w: W) -> W::Output {
+/// The stage type for `stage`: light per pixel on a mesh with vertex normals is
+/// [`SmoothPixelLight`], chosen here once, never per pixel.
+fn with_types<I: Interpolation, R: Rasterizer, W: WithStage>(
+    stage: StageName,
+    smooth: bool,
+    w: W,
+) -> W::Output {
     match stage {
-        StageName::Points => w.with::<Points, I>(),
-        StageName::Wireframe => w.with::<Wireframe, I>(),
-        StageName::Filled => w.with::<Filled, I>(),
-        StageName::Depth => w.with::<Depth, I>(),
-        StageName::VertexLight => w.with::<VertexLight, I>(),
-        StageName::PixelLight => w.with::<PixelLight, I>(),
+        StageName::Points => w.with::<Points, I, R>(),
+        StageName::Wireframe => w.with::<Wireframe, I, R>(),
+        StageName::Filled => w.with::<Filled, I, R>(),
+        StageName::Depth => w.with::<Depth, I, R>(),
+        StageName::VertexLight => w.with::<VertexLight, I, R>(),
+        StageName::PixelLight if smooth => w.with::<SmoothPixelLight, I, R>(),
+        StageName::PixelLight => w.with::<PixelLight, I, R>(),
     }
 }
 
-struct NewPipeline;
+struct NewPipeline {
+    cull: Cull,
+}
 
 impl WithStage for NewPipeline {
     type Output = Box<dyn Render>;
-    fn with<S: Stage, I: Interpolation>(self) -> Box<dyn Render> {
-        Box::new(Pipeline::<S, I>::new())
+    fn with<S: Stage, I: Interpolation, R: Rasterizer>(self) -> Box<dyn Render> {
+        let mut pipeline = Pipeline::<S, I, R>::new();
+        pipeline.cull = self.cull;
+        Box::new(pipeline)
     }
 }
 
@@ -105,6 +132,8 @@ impl Figure {
         Figure {
             stage: StageName::PixelLight,
             affine: true,
+            raster: Raster::Rows,
+            cull: Cull::None,
         },
     ];
 
@@ -113,6 +142,8 @@ impl Figure {
         Figure {
             stage,
             affine: matches!(stage, StageName::VertexLight),
+            raster: Raster::Rows,
+            cull: Cull::None,
         }
     }
 
@@ -120,17 +151,25 @@ impl Figure {
     /// handout's when `None` or when the stage interpolates nothing it would change.
     pub fn with_interpolation(stage: StageName, affine: Option<bool>) -> Self {
         Figure {
-            stage,
             affine: match affine {
                 Some(a) if stage.interpolates() => a,
                 _ => Figure::of(stage).affine,
             },
+            ..Figure::of(stage)
         }
+    }
+
+    pub fn with_raster(self, raster: Raster) -> Self {
+        Figure { raster, ..self }
+    }
+
+    pub fn with_cull(self, cull: Cull) -> Self {
+        Figure { cull, ..self }
     }
 
     /// Whether this is the handout's interpolation for its stage.
     pub fn is_default(self) -> bool {
-        self == Figure::of(self.stage)
+        self.affine == Figure::of(self.stage).affine
     }
 
     /// The file name `rasterlab all` gives this figure.
@@ -157,41 +196,59 @@ impl Figure {
         }
     }
 
-    /// A short label: the stage name and any option that changes its interpolation.
+    /// Every option that makes this figure differ from the handout's, as the
+    /// command line spells them: ` --affine --raster edge --cull back`.
+    pub fn flags(self) -> String {
+        let mut flags = self.interpolation_flag().to_string();
+        if self.raster == Raster::Edge {
+            flags += " --raster edge";
+        }
+        match self.cull {
+            Cull::None => {}
+            Cull::Back => flags += " --cull back",
+            Cull::Front => flags += " --cull front",
+        }
+        flags
+    }
+
+    /// A short label: the stage name and the options that change it.
     pub fn label(self) -> String {
-        format!("{}{}", self.stage.name(), self.interpolation_flag())
+        format!("{}{}", self.stage.name(), self.flags())
     }
 
     /// The image file a stage subcommand writes without `-o`: the label's words
     /// joined, so `pixel-light --affine` does not overwrite `pixel-light.png`.
     pub fn default_file(self) -> String {
-        let flag = self.interpolation_flag().trim_start_matches(" --");
-        let flag = flag.strip_prefix("interpolation ").unwrap_or(flag);
-        if flag.is_empty() {
+        let words = self.flags().replace(" --interpolation ", " ").replace(" --", " ");
+        let words: Vec<&str> = words.split_whitespace().collect();
+        if words.is_empty() {
             format!("{}.png", self.stage.name())
         } else {
-            format!("{}-{flag}.png", self.stage.name())
+            format!("{}-{}.png", self.stage.name(), words.join("-"))
         }
     }
 
-    /// Calls `w` with this figure's stage and interpolation types.
-    pub fn with_stage<W: WithStage>(self, w: W) -> W::Output {
-        if self.affine {
-            with_interpolation::<Affine, W>(self.stage, w)
-        } else {
-            with_interpolation::<Perspective, W>(self.stage, w)
+    /// Calls `w` with this figure's stage, interpolation and rasterizer types, for
+    /// a mesh that has vertex normals when `smooth`.
+    pub fn with_stage<W: WithStage>(self, smooth: bool, w: W) -> W::Output {
+        match (self.affine, self.raster) {
+            (false, Raster::Rows) => with_types::<Perspective, RowRaster, W>(self.stage, smooth, w),
+            (true, Raster::Rows) => with_types::<Affine, RowRaster, W>(self.stage, smooth, w),
+            (false, Raster::Edge) => with_types::<Perspective, EdgeRaster, W>(self.stage, smooth, w),
+            (true, Raster::Edge) => with_types::<Affine, EdgeRaster, W>(self.stage, smooth, w),
         }
     }
 
-    /// The pipeline that draws this figure.
-    pub fn pipeline(self) -> Box<dyn Render> {
-        self.with_stage(NewPipeline)
+    /// The pipeline that draws this figure of `mesh`: the stage types fit the
+    /// mesh's attributes (smooth light where it has vertex normals).
+    pub fn pipeline_for(self, mesh: &Mesh) -> Box<dyn Render> {
+        self.with_stage(!mesh.normals.is_empty(), NewPipeline { cull: self.cull })
     }
 
     /// Draws this figure of `mesh` into a new frame.
     pub fn render(self, mesh: &Mesh, camera: &Camera, uniforms: &Uniforms) -> Frame {
         let mut frame = Frame::default();
-        self.pipeline().render(mesh, camera, uniforms, &mut frame);
+        self.pipeline_for(mesh).render(mesh, camera, uniforms, &mut frame);
         frame
     }
 }

@@ -259,7 +259,7 @@ pub fn measure_all(plan: &Plan, mut progress: impl FnMut(&str)) -> Vec<Row> {
             let scene = subdivide(&base, k);
             let camera = camera_for(size);
             for &view in &figures {
-                let mut pipeline = view.pipeline();
+                let mut pipeline = view.pipeline_for(&scene);
                 let mut frame = Frame::default();
                 pipeline.render(&scene, &camera, &uniforms, &mut frame); // warm-up
                 let timing = time_runs(plan.runs, || {

@@ -11,6 +11,7 @@ use crate::measure::report::INTERIOR_MARGIN;
 use crate::measure::timing::time_runs;
 use crate::pipeline::interpolate::{Pixel, Steps};
 use crate::pipeline::mesh::Vertex;
+use crate::pipeline::raster::Rasterizer;
 use crate::pipeline::stage::{Primitive, Surface};
 use crate::pipeline::{
     Camera, Frame, Interpolation, Light, Mesh, Pipeline, Render, Stage, Triangle, Uniforms,
@@ -64,8 +65,8 @@ struct DrawChecked<'a> {
 
 impl WithStage for DrawChecked<'_> {
     type Output = (Frame, u64, f64);
-    fn with<S: Stage, I: Interpolation>(self) -> (Frame, u64, f64) {
-        let mut pipeline = Pipeline::<Checked<S>, I>::new();
+    fn with<S: Stage, I: Interpolation, R: Rasterizer>(self) -> (Frame, u64, f64) {
+        let mut pipeline = Pipeline::<Checked<S>, I, R>::new();
         let mut frame = Frame::default();
         NON_FINITE.with(|n| n.set(0));
         pipeline.render(self.scene, self.camera, self.uniforms, &mut frame);
@@ -492,7 +493,7 @@ pub fn run(case: &Case, runs: usize) -> Outcome {
             uniforms: &Uniforms { light: case.light },
             runs,
         };
-        case.view.with_stage(draw)
+        case.view.with_stage(!case.scene.normals.is_empty(), draw)
     }));
     let mut outcome = Outcome {
         name: case.name.clone(),

@@ -22,9 +22,48 @@ pub const GUARD_BAND: f32 = 1.0;
 /// A stage `S`, interpolated the way `I` says and rasterized by `R`, with the
 /// scratch buffers it reuses from one triangle and one frame to the next.
 pub struct Pipeline<S: Stage, I: Interpolation = Perspective, R: Rasterizer = RowRaster> {
+    /// Which faces to leave out by the way they face the camera.
+    pub cull: Cull,
     scratch: R::Scratch<S::Varying>,
     visible: Visible<S::Varying>,
+    stats: Stats,
     types: PhantomData<(S, I)>,
+}
+
+/// Faces left out by the way they face the camera: a face is back-facing when its
+/// normal points away from the camera C, `(C - v0) · n < 0`, front-facing when
+/// that is `> 0`; a face seen exactly edge-on is neither.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Cull {
+    /// Draw every face (the handout).
+    #[default]
+    None,
+    Back,
+    Front,
+}
+
+/// What the last frame did, for `--stats`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Stats {
+    pub triangles: u64,
+    /// Left out by `cull`.
+    pub culled: u64,
+    /// Wholly off the screen, or wholly behind the near plane.
+    pub outside: u64,
+    /// Cut by the near plane or the guard band.
+    pub clipped: u64,
+    /// Handed to the rasterizer.
+    pub drawn: u64,
+    /// Pixels that passed the depth test (or had none) and were written.
+    pub pixels_written: u64,
+    /// Pixels a nearer surface had already covered: overdraw avoided.
+    pub depth_rejected: u64,
+    /// The whole mesh was in front of the near plane, so no triangle was checked
+    /// against it.
+    pub near_plane_skipped: bool,
+    /// The whole mesh was inside the view, so no triangle was tested against the
+    /// screen or the guard band.
+    pub view_tests_skipped: bool,
 }
 
 /// The pixels of one triangle that passed the depth test, shaded together once the
@@ -64,11 +103,13 @@ impl<V: Varying> Visible<V> {
 impl<S: Stage, I: Interpolation, R: Rasterizer> Default for Pipeline<S, I, R> {
     fn default() -> Self {
         Pipeline {
+            cull: Cull::None,
             scratch: Default::default(),
             visible: Visible {
                 index: Vec::new(),
                 carried: Vec::new(),
             },
+            stats: Stats::default(),
             types: PhantomData,
         }
     }
@@ -77,6 +118,11 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Default for Pipeline<S, I, R> {
 impl<S: Stage, I: Interpolation, R: Rasterizer> Pipeline<S, I, R> {
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// What the last `draw` did.
+    pub fn stats(&self) -> &Stats {
+        &self.stats
     }
 
     /// The handout's `Draw`: clear the target, then draw every face of `mesh`.
@@ -91,8 +137,32 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Pipeline<S, I, R> {
             "a stage with a depth test needs a depth buffer"
         );
         target.clear();
-        let screen = Screen::new(camera, target);
+        let mut screen = Screen::new(camera, target);
+        let fit = screen.fit(mesh);
+        self.stats = Stats {
+            triangles: mesh.faces.len() as u64,
+            near_plane_skipped: fit.in_front,
+            view_tests_skipped: fit.inside,
+            ..Stats::default()
+        };
+        if fit.in_front {
+            screen.near = None; // nothing to cut: no test per triangle
+        }
+        screen.view_tests = !fit.inside;
         for face in &mesh.faces {
+            if self.cull != Cull::None {
+                let v0 = mesh.positions[face.vertices[0] as usize];
+                let facing = (camera.position - v0).dot(face.normal);
+                let culled = match self.cull {
+                    Cull::Back => facing < 0.0,
+                    Cull::Front => facing > 0.0,
+                    Cull::None => false,
+                };
+                if culled {
+                    self.stats.culled += 1;
+                    continue;
+                }
+            }
             let surface = Surface {
                 normal: face.normal,
                 material: *mesh.material(face),
@@ -127,9 +197,11 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Pipeline<S, I, R> {
         target: &mut Target,
     ) {
         let mut polygon = Polygon::from_slice(corners);
+        let mut clipped = false;
         if let Some(n) = screen.near {
             if corners.iter().any(|c| !in_front(c, n)) {
                 polygon = clip_near(&polygon, n);
+                clipped = true;
             }
         }
         let mut projected = Polygon::default();
@@ -139,24 +211,34 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Pipeline<S, I, R> {
                 None => return, // a corner on the camera plane (only without clipping)
             }
         }
-        if off_screen(projected.as_slice(), &screen.rect) {
-            return;
+        if screen.view_tests {
+            if projected.is_empty() || off_screen(projected.as_slice(), &screen.rect) {
+                self.stats.outside += 1;
+                return;
+            }
+            if !projected.as_slice().iter().all(|s| screen.band.contains(s)) {
+                projected = clip_rect(&projected, &screen.band);
+                clipped = true;
+            }
         }
-        if !projected.as_slice().iter().all(|s| screen.band.contains(s)) {
-            projected = clip_rect(&projected, &screen.band);
-        }
+        self.stats.clipped += clipped as u64;
+        self.stats.drawn += 1;
+        let mut rasterized = 0u64;
         let (width, first_row) = (target.width as usize, target.rows.start as usize);
         // Empty unless the stage tests depth (`draw` checked it has a buffer then).
         let depth_buffer = target.depth.as_deref_mut().unwrap_or_default();
         let mut color = target.color.as_deref_mut();
+        let mut written = 0u64;
         if !S::BATCH_SHADING {
             R::polygon(
                 &mut self.scratch,
                 projected.as_slice(),
                 &screen.viewport,
                 |p| {
+                    rasterized += 1;
                     let i = (p.y as usize - first_row) * width + p.x as usize;
                     if depth_test::<S>(depth_buffer, i, p.zinv) {
+                        written += 1;
                         if let Some(color) = color.as_deref_mut() {
                             let varying = I::decode(p.zinv, p.varying);
                             color[i] = pack(S::pixel_shader(&varying, surface, uniforms));
@@ -164,6 +246,8 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Pipeline<S, I, R> {
                     }
                 },
             );
+            self.stats.pixels_written += written;
+            self.stats.depth_rejected += rasterized - written;
             return;
         }
         let visible = &mut self.visible;
@@ -174,6 +258,7 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Pipeline<S, I, R> {
             projected.as_slice(),
             &screen.viewport,
             |p| {
+                rasterized += 1;
                 let i = (p.y as usize - first_row) * width + p.x as usize;
                 if depth_test::<S>(depth_buffer, i, p.zinv) {
                     visible.index.push(i);
@@ -181,6 +266,9 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Pipeline<S, I, R> {
                 }
             },
         );
+        written = visible.index.len() as u64;
+        self.stats.pixels_written += written;
+        self.stats.depth_rejected += rasterized - written;
         if let Some(color) = color {
             visible.shade::<S, I>(surface, uniforms, color);
         }
@@ -204,8 +292,9 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Pipeline<S, I, R> {
             else {
                 continue;
             };
+            let stats = &mut self.stats;
             R::point(s, &screen.viewport, |p| {
-                shade_pixel::<S, I>(p, surface, uniforms, target)
+                stats.count(shade_pixel::<S, I>(p, surface, uniforms, target))
             });
         }
     }
@@ -237,8 +326,9 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Pipeline<S, I, R> {
                 clip_segment_rect(a, b, &screen.band)
             };
             let Some((a, b)) = banded else { continue };
+            let stats = &mut self.stats;
             R::line(a, b, &screen.viewport, |p| {
-                shade_pixel::<S, I>(p, surface, uniforms, target)
+                stats.count(shade_pixel::<S, I>(p, surface, uniforms, target))
             });
         }
     }
@@ -284,18 +374,27 @@ fn depth_test<S: Stage>(buffer: &mut [f32], i: usize, zinv: f32) -> bool {
     true
 }
 
+impl Stats {
+    /// Counts one pixel that was written or, if not, rejected by the depth test.
+    fn count(&mut self, written: bool) {
+        self.pixels_written += written as u64;
+        self.depth_rejected += !written as u64;
+    }
+}
+
 /// The handout's `PixelShader` for one pixel of a point or line: the depth test,
-/// then the stage's colour into the target.
+/// then the stage's colour into the target. Returns whether it was written.
 #[inline(always)]
 fn shade_pixel<S: Stage, I: Interpolation>(
     p: Pixel<S::Varying>,
     surface: &Surface,
     uniforms: &Uniforms,
     target: &mut Target,
-) {
+) -> bool {
     let i = target.index(p.x, p.y);
     let depth_buffer = target.depth.as_deref_mut().unwrap_or_default();
-    if depth_test::<S>(depth_buffer, i, p.zinv) {
+    let written = depth_test::<S>(depth_buffer, i, p.zinv);
+    if written {
         if let Some(color) = target.color.as_deref_mut() {
             color[i] = pack(S::pixel_shader(
                 &I::decode(p.zinv, p.varying),
@@ -304,6 +403,7 @@ fn shade_pixel<S: Stage, I: Interpolation>(
             ));
         }
     }
+    written
 }
 
 /// True if every corner lies beyond one side of the screen by more than the
@@ -325,6 +425,16 @@ struct Screen {
     rect: Rect,
     band: Rect,
     viewport: Viewport,
+    /// Whether triangles are tested against the screen and the guard band.
+    view_tests: bool,
+}
+
+/// Where a whole mesh lies, found once per frame from its bounding box.
+struct Fit {
+    /// Every point is in front of the near plane (or there is none).
+    in_front: bool,
+    /// Every point projects inside the screen, so no triangle needs a view test.
+    inside: bool,
 }
 
 impl Screen {
@@ -341,15 +451,58 @@ impl Screen {
                 right: rect.right + g,
                 bottom: rect.bottom + g,
             },
+            view_tests: true,
             viewport: Viewport {
                 half_width: (camera.width / 2) as i32,
                 half_height: (camera.height / 2) as i32,
+                centre: (camera.width as f32 / 2.0, camera.height as f32 / 2.0),
                 bounds: Bounds {
                     x: 0..target.width.min(camera.width) as i32,
                     y: target.rows.start as i32..target.rows.end.min(camera.height) as i32,
                 },
             },
         }
+    }
+}
+
+impl Screen {
+    /// Where `mesh` lies: its bounding box's eight corners, in camera space and
+    /// projected. A box in front of the near plane holds a mesh in front of it; a
+    /// box that projects inside the screen holds a mesh inside the view.
+    fn fit(&self, mesh: &Mesh) -> Fit {
+        let Some(&first) = mesh.positions.first() else {
+            return Fit {
+                in_front: true,
+                inside: true,
+            };
+        };
+        let (lo, hi) = mesh
+            .positions
+            .iter()
+            .fold((first, first), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+        let corners = (0..8).map(|i| {
+            let pick = |bit: usize, l: f32, h: f32| if i & bit == 0 { l } else { h };
+            let p = glam::Vec3::new(pick(1, lo.x, hi.x), pick(2, lo.y, hi.y), pick(4, lo.z, hi.z));
+            self.projection.to_camera(p)
+        });
+        let near = self.near.unwrap_or(f32::MIN_POSITIVE);
+        let mut fit = Fit {
+            in_front: true,
+            inside: true,
+        };
+        for c in corners {
+            fit.in_front &= c.z >= near && c.z.is_finite();
+            let on_screen = self
+                .projection
+                .project_centred(c)
+                .is_some_and(|(x, y, _)| {
+                    (self.rect.left..=self.rect.right).contains(&x)
+                        && (self.rect.top..=self.rect.bottom).contains(&y)
+                });
+            fit.inside &= c.z >= near && on_screen;
+        }
+        fit.in_front |= self.near.is_none();
+        fit
     }
 }
 
@@ -360,9 +513,22 @@ pub trait Render {
 
     /// [`Pipeline::draw`]: draws `mesh` into `target`, a band of the camera's image.
     fn draw(&mut self, mesh: &Mesh, camera: &Camera, uniforms: &Uniforms, target: &mut Target);
+
+    /// What the last frame did.
+    fn stats(&self) -> Stats;
+
+    fn set_cull(&mut self, cull: Cull);
 }
 
 impl<S: Stage, I: Interpolation, R: Rasterizer> Render for Pipeline<S, I, R> {
+    fn stats(&self) -> Stats {
+        self.stats
+    }
+
+    fn set_cull(&mut self, cull: Cull) {
+        self.cull = cull;
+    }
+
     fn draw(&mut self, mesh: &Mesh, camera: &Camera, uniforms: &Uniforms, target: &mut Target) {
         Pipeline::draw(self, mesh, camera, uniforms, target)
     }

@@ -11,6 +11,7 @@
 //! | [`Depth`] | 5 | polygons | yes | nothing (1/z is the core's) |
 //! | [`VertexLight`] | 6.1 | polygons | yes | [`Illumination`]: eq. 11 at the vertices |
 //! | [`PixelLight`] | 6.2 | polygons | yes | [`Position`]: the 3D position |
+//! | [`SmoothPixelLight`] | 6.2, for meshes with vertex normals | polygons | yes | [`SmoothSurface`]: the 3D position and the normal |
 
 use super::interpolate::{linear_ops, Nothing, Varying};
 use super::light::Light;
@@ -196,5 +197,41 @@ impl Stage for PixelLight {
     fn pixel_shader(varying: &Position, surface: &Surface, uniforms: &Uniforms) -> Vec3 {
         let rho = surface.material.color;
         uniforms.light.reflected(varying.world, surface.normal, rho)
+    }
+}
+
+/// The per-pixel struct of light per pixel on a mesh with vertex normals: the 3D
+/// position and the normal, both interpolated.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SmoothSurface {
+    pub world: Vec3,
+    pub normal: Vec3,
+}
+
+linear_ops!(SmoothSurface { world, normal });
+
+/// Section 6.2 on a smooth mesh: as [`PixelLight`], with the normal interpolated
+/// from the vertices' normals and renormalised at each pixel instead of the face's.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct SmoothPixelLight;
+
+impl Stage for SmoothPixelLight {
+    type Varying = SmoothSurface;
+    const PRIMITIVE: Primitive = Primitive::Polygons;
+    const DEPTH_TEST: bool = true;
+    const BATCH_SHADING: bool = true;
+
+    fn vertex_shader(vertex: &Vertex, _: &Surface, _: &Uniforms) -> SmoothSurface {
+        SmoothSurface {
+            world: vertex.position,
+            normal: vertex.normal,
+        }
+    }
+
+    #[inline]
+    fn pixel_shader(varying: &SmoothSurface, surface: &Surface, uniforms: &Uniforms) -> Vec3 {
+        let rho = surface.material.color;
+        let normal = varying.normal.normalize_or_zero();
+        uniforms.light.reflected(varying.world, normal, rho)
     }
 }

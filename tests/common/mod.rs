@@ -23,7 +23,7 @@ pub const WHITE: [u8; 3] = [191, 191, 191];
 
 pub fn render(stage: StageName, affine: bool) -> Frame {
     app::render(
-        Figure { stage, affine },
+        Figure::with_interpolation(stage, Some(affine)),
         &cornell_box(),
         &Settings::default(),
         None,

@@ -4,10 +4,13 @@
 //! A rasterizer is a strategy: the pipeline hands it projected (and clipped)
 //! corners and gets pixels back, so a second way of covering pixels plugs in
 //! beside the handout's without touching the stages. [`RowRaster`] is the
-//! handout's (sections 3 and 4).
+//! handout's (sections 3 and 4); [`EdgeRaster`] is exact (edge functions, pixel
+//! centres, the top-left rule).
 
+pub mod edge;
 pub mod rows;
 
+pub use edge::EdgeRaster;
 pub use rows::RowRaster;
 
 use super::clip::ScreenVertex;
@@ -38,12 +41,14 @@ impl Bounds {
     }
 }
 
-/// Where projected vertices land: the image's half size (the handout adds `W/2`
-/// and `H/2` after projecting) and the pixels that may be written.
-#[derive(Clone, Debug, PartialEq, Eq)]
+/// Where projected vertices land: the image's half size as the handout adds it
+/// after truncating (`W/2`, `H/2` in integers), the image centre unrounded for the
+/// exact rasterizer, and the pixels that may be written.
+#[derive(Clone, Debug, PartialEq)]
 pub struct Viewport {
     pub half_width: i32,
     pub half_height: i32,
+    pub centre: (f32, f32),
     pub bounds: Bounds,
 }
 

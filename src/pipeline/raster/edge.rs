@@ -1,0 +1,265 @@
+//! The exact rasterizer (`--raster edge`): edge functions over each triangle's
+//! bounding box, in the way of GPUs and of one of the student reports.
+//!
+//! - Vertices are projected without truncation and snapped to 1/256 of a pixel.
+//! - Pixel (i, j) is sampled at its centre, (256 i + 128, 256 j + 128).
+//! - Edge functions are exact integers (i64). A pixel is covered when its centre is
+//!   strictly inside, or on an edge whose inside lies immediately to its right (x
+//!   increasing) or, for a horizontal edge, immediately below it (y increasing):
+//!   the top-left rule, so a pixel on an edge shared by two triangles is drawn once.
+//! - What the pipeline carries (1/z and the varying, encoded by the interpolation)
+//!   is weighted by the pixel centre's barycentric coordinates; perspective
+//!   correction then divides as for the rows rasterizer.
+//! - Points land on pixel (floor(x), floor(y)); lines join such pixels with the
+//!   handout's `Interpolate`.
+
+use super::rows::draw_line;
+use super::{Rasterizer, Viewport};
+use crate::pipeline::clip::ScreenVertex;
+use crate::pipeline::interpolate::{Pixel, Varying};
+
+/// The exact rasterizer.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct EdgeRaster;
+
+/// Sub-pixel steps per pixel: 8 bits of precision.
+pub const SUBPIXEL: i64 = 256;
+
+/// A vertex on the sub-pixel grid, and what it carries.
+#[derive(Clone, Copy, Debug)]
+struct Snapped<V> {
+    x: i64,
+    y: i64,
+    zinv: f32,
+    varying: V,
+}
+
+/// The vertex's position in image pixels, unrounded: `f X/Z + W/2`.
+#[inline]
+fn image_position<V>(s: &ScreenVertex<V>, viewport: &Viewport) -> (f32, f32) {
+    (s.x + viewport.centre.0, s.y + viewport.centre.1)
+}
+
+fn snap<V: Copy>(s: &ScreenVertex<V>, viewport: &Viewport) -> Snapped<V> {
+    let (x, y) = image_position(s, viewport);
+    Snapped {
+        x: (x * SUBPIXEL as f32).round() as i64,
+        y: (y * SUBPIXEL as f32).round() as i64,
+        zinv: s.zinv,
+        varying: s.varying,
+    }
+}
+
+/// The pixel a point lands on: the one containing it.
+fn point_pixel<V>(s: ScreenVertex<V>, viewport: &Viewport) -> Pixel<V> {
+    let (x, y) = image_position(&s, viewport);
+    Pixel {
+        x: x.floor() as i32,
+        y: y.floor() as i32,
+        zinv: s.zinv,
+        varying: s.varying,
+    }
+}
+
+/// One edge, from `a` to `b`: `E(p) = (b - a) x (p - a)`, positive on the inside of
+/// a triangle whose area (as this function gives it) is positive.
+#[derive(Clone, Copy, Debug)]
+struct Edge {
+    /// E at the first pixel centre of the current row, and its steps.
+    dx: i64,
+    dy: i64,
+    /// 0 if a centre exactly on the edge is covered (the top-left rule), else 1.
+    bias: i64,
+}
+
+impl Edge {
+    fn new(ax: i64, ay: i64, bx: i64, by: i64) -> Edge {
+        // E(p) = (bx - ax)(py - ay) - (by - ay)(px - ax): dE/dx = ay - by,
+        // dE/dy = bx - ax. A centre on the edge is covered when moving it by
+        // (+e, +e^2) goes inside: dE/dx > 0, or dE/dx = 0 and dE/dy > 0.
+        let (dx, dy) = (ay - by, bx - ax);
+        let covered = dx > 0 || (dx == 0 && dy > 0);
+        Edge {
+            dx,
+            dy,
+            bias: if covered { 0 } else { 1 },
+        }
+    }
+
+    fn at(&self, ax: i64, ay: i64, px: i64, py: i64) -> i64 {
+        self.dy * (py - ay) + self.dx * (px - ax)
+    }
+}
+
+/// Rasterizes one triangle with the rules above.
+fn triangle<V: Varying>(
+    corners: [Snapped<V>; 3],
+    viewport: &Viewport,
+    plot: &mut impl FnMut(Pixel<V>),
+) {
+    let [a, mut b, mut c] = corners;
+    let area = Edge::new(a.x, a.y, b.x, b.y).at(a.x, a.y, c.x, c.y);
+    if area == 0 {
+        return; // zero area covers nothing
+    }
+    if area < 0 {
+        std::mem::swap(&mut b, &mut c); // draw both windings
+    }
+    let area = area.abs();
+    // Edges opposite a, b and c: their values are the weights of a, b and c.
+    let edges = [
+        (Edge::new(b.x, b.y, c.x, c.y), b),
+        (Edge::new(c.x, c.y, a.x, a.y), c),
+        (Edge::new(a.x, a.y, b.x, b.y), a),
+    ];
+    // Pixels whose centres the bounding box contains, within the bounds.
+    let (s, h) = (SUBPIXEL, SUBPIXEL / 2);
+    let min_x = a.x.min(b.x).min(c.x);
+    let max_x = a.x.max(b.x).max(c.x);
+    let min_y = a.y.min(b.y).min(c.y);
+    let max_y = a.y.max(b.y).max(c.y);
+    let bounds = &viewport.bounds;
+    let first_i = (min_x - h).div_euclid(s).max(bounds.x.start as i64);
+    let last_i = (max_x - h).div_euclid(s).min(bounds.x.end as i64 - 1);
+    let first_j = (min_y - h).div_euclid(s).max(bounds.y.start as i64);
+    let last_j = (max_y - h).div_euclid(s).min(bounds.y.end as i64 - 1);
+    if first_i > last_i || first_j > last_j {
+        return;
+    }
+    let inv_area = 1.0 / area as f32;
+    for j in first_j..=last_j {
+        let py = s * j + h;
+        let px = s * first_i + h;
+        let mut e = edges.map(|(edge, from)| edge.at(from.x, from.y, px, py));
+        for i in first_i..=last_i {
+            if e.iter().zip(&edges).all(|(&v, (edge, _))| v - edge.bias >= 0) {
+                let w = e.map(|v| v as f32 * inv_area);
+                plot(Pixel {
+                    x: i as i32,
+                    y: j as i32,
+                    zinv: a.zinv * w[0] + b.zinv * w[1] + c.zinv * w[2],
+                    varying: a.varying * w[0] + b.varying * w[1] + c.varying * w[2],
+                });
+            }
+            for (v, (edge, _)) in e.iter_mut().zip(&edges) {
+                *v += edge.dx * s;
+            }
+        }
+    }
+}
+
+impl Rasterizer for EdgeRaster {
+    type Scratch<V: Varying> = ();
+
+    fn point<V: Varying>(p: ScreenVertex<V>, viewport: &Viewport, mut plot: impl FnMut(Pixel<V>)) {
+        let p = point_pixel(p, viewport);
+        if viewport.bounds.contains(&p) {
+            plot(p);
+        }
+    }
+
+    fn line<V: Varying>(
+        a: ScreenVertex<V>,
+        b: ScreenVertex<V>,
+        viewport: &Viewport,
+        plot: impl FnMut(Pixel<V>),
+    ) {
+        let (a, b) = (point_pixel(a, viewport), point_pixel(b, viewport));
+        draw_line(a, b, &viewport.bounds, plot);
+    }
+
+    /// A convex polygon as a fan of triangles from its first corner: the fan's
+    /// inner edges are shared, and the top-left rule draws each pixel once.
+    fn polygon<V: Varying>(
+        _: &mut (),
+        corners: &[ScreenVertex<V>],
+        viewport: &Viewport,
+        mut plot: impl FnMut(Pixel<V>),
+    ) {
+        let Some(first) = corners.first() else {
+            return;
+        };
+        let first = snap(first, viewport);
+        for pair in corners[1..].windows(2) {
+            let tri = [first, snap(&pair[0], viewport), snap(&pair[1], viewport)];
+            triangle(tri, viewport, &mut plot);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::pipeline::interpolate::Nothing;
+    use crate::pipeline::raster::Bounds;
+
+    fn viewport(w: i32, h: i32) -> Viewport {
+        Viewport {
+            half_width: w / 2,
+            half_height: h / 2,
+            centre: (w as f32 / 2.0, h as f32 / 2.0),
+            bounds: Bounds { x: 0..w, y: 0..h },
+        }
+    }
+
+    /// A vertex at image position (x, y) on a `w` x `h` viewport.
+    fn at(x: f32, y: f32, w: i32, h: i32) -> ScreenVertex<Nothing> {
+        ScreenVertex {
+            x: x - w as f32 / 2.0,
+            y: y - h as f32 / 2.0,
+            zinv: 1.0,
+            varying: Nothing {},
+        }
+    }
+
+    fn covered(corners: &[(f32, f32)]) -> Vec<(i32, i32)> {
+        let v: Vec<_> = corners.iter().map(|&(x, y)| at(x, y, 16, 16)).collect();
+        let mut out = Vec::new();
+        EdgeRaster::polygon(&mut (), &v, &viewport(16, 16), |p| out.push((p.x, p.y)));
+        out.sort();
+        out
+    }
+
+    #[test]
+    fn centres_strictly_inside_and_the_top_left_rule() {
+        // The square [1, 3] x [1, 3] as two triangles: its pixels are those whose
+        // centres (i + 0.5) lie inside: (1, 1), (2, 1), (1, 2), (2, 2). Centres on
+        // its edges: none. Both triangles together draw each exactly once.
+        let mut both = covered(&[(1.0, 1.0), (3.0, 1.0), (3.0, 3.0)]);
+        both.extend(covered(&[(1.0, 1.0), (3.0, 3.0), (1.0, 3.0)]));
+        both.sort();
+        assert_eq!(both, [(1, 1), (1, 2), (2, 1), (2, 2)]);
+        // A square whose edges pass through centres: [0.5, 2.5]^2. The left and top
+        // edges' centres are in, the right and bottom ones out.
+        let mut square = covered(&[(0.5, 0.5), (2.5, 0.5), (2.5, 2.5)]);
+        square.extend(covered(&[(0.5, 0.5), (2.5, 2.5), (0.5, 2.5)]));
+        square.sort();
+        assert_eq!(square, [(0, 0), (0, 1), (1, 0), (1, 1)]);
+        // Either winding, the same pixels; zero area, none.
+        assert_eq!(
+            covered(&[(1.0, 1.0), (3.0, 3.0), (3.0, 1.0)]),
+            covered(&[(1.0, 1.0), (3.0, 1.0), (3.0, 3.0)])
+        );
+        assert!(covered(&[(1.0, 1.0), (2.0, 2.0), (3.0, 3.0)]).is_empty());
+    }
+
+    #[test]
+    fn weights_interpolate_linearly_at_centres() {
+        let v = [(0.0, 0.0, 0.0f32), (8.0, 0.0, 8.0), (0.0, 8.0, 0.0)].map(|(x, y, q)| ScreenVertex {
+            x: x - 8.0,
+            y: y - 8.0,
+            zinv: 1.0,
+            varying: q,
+        });
+        let mut seen = 0;
+        EdgeRaster::polygon(&mut (), &v, &viewport(16, 16), |p| {
+            // q = x at the centre, x + 0.5.
+            assert!((p.varying - (p.x as f32 + 0.5)).abs() < 1e-5, "{p:?}");
+            assert!((p.zinv - 1.0).abs() < 1e-6);
+            seen += 1;
+        });
+        // Centres (i + 0.5, j + 0.5) strictly inside: i + j <= 6, 28 of them; the 8
+        // centres on the long edge have the inside to their left: not covered.
+        assert_eq!(seen, 28);
+    }
+}
