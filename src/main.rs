@@ -4,7 +4,9 @@ use clap::parser::ValueSource;
 use clap::{ArgMatches, Args, CommandFactory, FromArgMatches, Parser, Subcommand};
 use glam::Vec3;
 use rasterlab::app::{self, controls, explain, parse, viewer, Settings};
+use rasterlab::measure::figure::Raster;
 use rasterlab::measure::raytrace;
+use rasterlab::pipeline::draw::Cull;
 use rasterlab::{Figure, StageName};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -145,12 +147,16 @@ struct Render {
     #[arg(long, value_name = "N", value_parser = |s: &str| parse::whole(s, 1, 100_000),
           allow_hyphen_values = true)]
     time: Option<u64>,
+    /// Print what the frame did on stderr: triangles culled, outside the view,
+    /// clipped and drawn; pixels written and rejected by the depth test.
+    #[arg(long)]
+    stats: bool,
     /// Write the depth buffer (1/z, scaled to grey, with a legend) instead of the
     /// colours: depth, vertex-light and pixel-light [default file: <stage>-buffer.png]
     #[arg(long)]
     buffer: bool,
     #[command(flatten)]
-    interpolation: InterpolationArgs,
+    draw: DrawArgs,
     #[command(flatten)]
     scene: SceneArgs,
 }
@@ -164,8 +170,28 @@ enum Mode {
     Perspective,
 }
 
+/// Which rasterizer draws.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum RasterArg {
+    /// The handout's: truncated vertices, Interpolate, polygon rows.
+    Rows,
+    /// Exact: pixel centres, sub-pixel vertices, the top-left rule.
+    Edge,
+}
+
+/// Which faces to leave out.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum CullArg {
+    None,
+    /// Faces whose normal points away from the camera.
+    Back,
+    /// Faces whose normal points toward the camera.
+    Front,
+}
+
+/// How a stage is drawn.
 #[derive(Args, Debug)]
-struct InterpolationArgs {
+struct DrawArgs {
     /// How vertex-light and pixel-light interpolate across the screen [default: the
     /// handout's: affine for vertex-light, perspective for pixel-light]. 1/z, and so
     /// the depth test, is the same either way.
@@ -174,9 +200,15 @@ struct InterpolationArgs {
     /// Short for --interpolation affine (with pixel-light: Figure 8).
     #[arg(long, conflicts_with = "interpolation")]
     affine: bool,
+    /// The rasterizer: rows (the handout's) or edge (exact).
+    #[arg(long, value_name = "RASTER", value_enum, default_value = "rows")]
+    raster: RasterArg,
+    /// Leave out back- or front-facing faces (normal away from or toward the camera).
+    #[arg(long, value_name = "FACES", value_enum, default_value = "none")]
+    cull: CullArg,
 }
 
-impl InterpolationArgs {
+impl DrawArgs {
     /// Some(true) for affine, Some(false) for perspective, None for the handout's.
     fn affine(&self) -> Option<bool> {
         if self.affine {
@@ -184,6 +216,21 @@ impl InterpolationArgs {
         } else {
             self.interpolation.map(|m| m == Mode::Affine)
         }
+    }
+
+    fn figure(&self, stage: StageName) -> Figure {
+        let raster = match self.raster {
+            RasterArg::Rows => Raster::Rows,
+            RasterArg::Edge => Raster::Edge,
+        };
+        let cull = match self.cull {
+            CullArg::None => Cull::None,
+            CullArg::Back => Cull::Back,
+            CullArg::Front => Cull::Front,
+        };
+        Figure::with_interpolation(stage, self.affine())
+            .with_raster(raster)
+            .with_cull(cull)
     }
 }
 
@@ -235,7 +282,7 @@ struct ViewArgs {
     #[arg(value_name = "STAGE", default_value = "pixel-light", value_parser = parse::stage)]
     stage: StageName,
     #[command(flatten)]
-    interpolation: InterpolationArgs,
+    draw: DrawArgs,
     /// Quit after N frames.
     #[arg(long, value_name = "N", value_parser = |s: &str| parse::whole(s, 1, u64::MAX),
           allow_hyphen_values = true)]
@@ -268,7 +315,7 @@ struct AnimateArgs {
           value_parser = |s: &str| parse::whole(s, 10, 10_000))]
     delay: u64,
     #[command(flatten)]
-    interpolation: InterpolationArgs,
+    draw: DrawArgs,
     #[command(flatten)]
     scene: SceneArgs,
 }
@@ -284,6 +331,22 @@ enum Explain {
     ///
     /// Example: `rasterlab explain rows 10,5 5,10 15,15`, the handout's example.
     Rows(ExplainRows),
+    /// The exact rasterizer (`--raster edge`) on one triangle: pixel centres,
+    /// the pixels covered, and the top-left rule for centres on an edge.
+    ///
+    /// Example: `rasterlab explain edge 0.5,0.5 6.5,0.5 0.5,6.5`.
+    Edge(ExplainEdge),
+}
+
+#[derive(Args, Debug)]
+struct ExplainEdge {
+    /// The triangle's corners as X,Y image positions in pixels; fractions allowed.
+    #[arg(value_name = "X,Y", num_args = 3, required = true, value_parser = parse::point_f32)]
+    corners: Vec<(f32, f32)>,
+    /// Output image (.png or .bmp, or - for standard output) [default: explain-edge.png]
+    #[arg(short, long, value_name = "FILE", value_parser = parse::image_path,
+          allow_hyphen_values = true)]
+    out: Option<PathBuf>,
 }
 
 #[derive(Args, Debug)]
@@ -328,7 +391,7 @@ fn print_out(text: &str) -> Result<(), String> {
 }
 
 fn render(stage: StageName, args: &Render) -> Result<(), String> {
-    let figure = Figure::with_interpolation(stage, args.interpolation.affine());
+    let figure = args.draw.figure(stage);
     let out = args.out.clone().unwrap_or_else(|| {
         let name = figure.default_file();
         PathBuf::from(match args.buffer {
@@ -338,10 +401,13 @@ fn render(stage: StageName, args: &Render) -> Result<(), String> {
     });
     let settings = args.scene.settings();
     let runs = args.time.map(|n| n as usize);
-    let timing = app::render_to_file(figure, &settings, &out, runs, args.buffer)
+    let (timing, stats) = app::render_to_file(figure, &settings, &out, runs, args.buffer)
         .map_err(|e| e.to_string())?;
     if let Some(t) = timing {
         eprintln!("render: {t}");
+    }
+    if args.stats {
+        eprint!("{}", app::stats_text(&stats));
     }
     eprintln!("wrote {}", app::image_io::describe(&out));
     Ok(())
@@ -422,7 +488,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Command::View(a) => {
             let options = viewer::Options {
                 settings: a.scene.settings(),
-                view: Figure::with_interpolation(a.stage, a.interpolation.affine()),
+                view: a.draw.figure(a.stage),
                 frames: a.frames,
                 screenshot: a.screenshot.clone(),
                 script: a.keys.clone().unwrap_or_default().0,
@@ -439,7 +505,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             Ok(())
         }
         Command::Animate(a) => {
-            let figure = Figure::with_interpolation(a.stage, a.interpolation.affine());
+            let figure = a.draw.figure(a.stage);
             let name = figure.default_file().replace(".png", ".gif");
             let out = a.out.clone().unwrap_or_else(|| PathBuf::from(name));
             let settings = a.scene.settings();
@@ -456,6 +522,10 @@ fn run(cli: Cli) -> Result<(), Failure> {
                     &a.out,
                     "explain-rows.png",
                 ),
+                Explain::Edge(a) => {
+                    let c = [a.corners[0], a.corners[1], a.corners[2]];
+                    (explain::explain_edge(&c), &a.out, "explain-edge.png")
+                }
             };
             let out = out.clone().unwrap_or_else(|| PathBuf::from(default));
             let frame = picture.map_err(Failure::Usage)?;
@@ -496,6 +566,15 @@ fn refuse_unused_options(command: &str, m: &ArgMatches) -> Result<(), String> {
         return Err(format!(
             "--buffer does nothing for {command}: only depth, vertex-light and pixel-light have a depth buffer"
         ));
+    }
+    if command == "raytrace" {
+        for id in ["raster", "cull", "stats", "buffer"] {
+            if given(id) {
+                return Err(format!(
+                    "--{id} does nothing for raytrace: it casts rays, it does not rasterize"
+                ));
+            }
+        }
     }
     let shaded = lit || (command == "raytrace" && !m.get_flag("flat"));
     for id in ["light", "light_power", "indirect"] {

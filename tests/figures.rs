@@ -79,7 +79,7 @@ fn assert_picture(path: &Path, frame: &rasterlab::Frame) {
 /// comes from (the commands are on the pages that show them).
 #[test]
 fn committed_pictures_match_the_code() {
-    use rasterlab::app::explain::{explain_line, explain_rows};
+    use rasterlab::app::explain::{explain_edge, explain_line, explain_rows};
     let steps = steps();
     // rasterlab explain line 4,2 1,8; rasterlab explain rows 10,5 5,10 15,15
     assert_picture(
@@ -89,6 +89,11 @@ fn committed_pictures_match_the_code() {
     assert_picture(
         &steps.join("explain-rows.png"),
         &explain_rows(&[(10, 5), (5, 10), (15, 15)]).unwrap(),
+    );
+    // rasterlab explain edge 0.5,0.5 6.5,0.5 0.5,6.5
+    assert_picture(
+        &steps.join("explain-edge.png"),
+        &explain_edge(&[(0.5, 0.5), (6.5, 0.5), (0.5, 6.5)]).unwrap(),
     );
     // rasterlab depth --buffer
     let (depth, _) = app::render(

@@ -3,7 +3,7 @@
 //! mapping is tested on its own and key scripts replay exactly.
 
 use super::Settings;
-use crate::measure::figure::Figure;
+use crate::measure::figure::{Figure, Raster};
 use glam::Vec3;
 
 /// The keys the viewer reads, independent of the window library.
@@ -47,6 +47,8 @@ pub enum Action {
     Show(Figure),
     /// Switch between perspective-correct and affine interpolation (p).
     TogglePerspective,
+    /// Switch between the handout's rows rasterizer and the exact one (x).
+    ToggleRaster,
     /// Save the current frame as a PNG (c).
     Save,
     /// Print the key list (h).
@@ -62,6 +64,7 @@ keys: up/down move the camera forward/back, left/right turn it (yaw),
       w/s move the light forward/back (+z/-z), a/d left/right, q/e up/down;
       1 points, 2 wireframe, 3 filled, 4 depth, 5 vertex-light, 6 pixel-light,
       7 pixel-light --affine; p toggles perspective-correct interpolation;
+      x switches between the rows rasterizer and the exact edge rasterizer;
       c saves the frame as a PNG; h prints this list; Esc quits.";
 
 /// Speeds of held keys and of the mouse. Movement is per second, so it feels the
@@ -179,11 +182,20 @@ pub fn action(key: Key) -> Option<Action> {
     match key {
         Key::Char(c @ '1'..='7') => Some(Action::Show(Figure::FIGURES[c as usize - '1' as usize])),
         Key::Char('p') => Some(Action::TogglePerspective),
+        Key::Char('x') => Some(Action::ToggleRaster),
         Key::Char('c') => Some(Action::Save),
         Key::Char('h') => Some(Action::Help),
         Key::Escape => Some(Action::Quit),
         _ => None,
     }
+}
+
+/// `view` drawn by the other rasterizer.
+pub fn toggle_raster(view: Figure) -> Figure {
+    view.with_raster(match view.raster {
+        Raster::Rows => Raster::Edge,
+        Raster::Edge => Raster::Rows,
+    })
 }
 
 /// `view` with interpolation switched, for stages that interpolate; others unchanged.
@@ -339,10 +351,17 @@ mod tests {
         );
         assert_eq!(
             action(Key::Char('7')),
-            Some(Action::Show(Figure::with_interpolation(StageName::PixelLight, Some(true))))
+            Some(Action::Show(Figure::with_interpolation(
+                StageName::PixelLight,
+                Some(true)
+            )))
         );
         assert_eq!(action(Key::Char('8')), None);
         assert_eq!(action(Key::Char('p')), Some(Action::TogglePerspective));
+        assert_eq!(action(Key::Char('x')), Some(Action::ToggleRaster));
+        let edge = toggle_raster(Figure::of(StageName::Depth));
+        assert_eq!(edge.raster, Raster::Edge);
+        assert_eq!(toggle_raster(edge), Figure::of(StageName::Depth));
         assert_eq!(action(Key::Escape), Some(Action::Quit));
         assert!(toggle_perspective(Figure::of(StageName::PixelLight)).affine);
         assert!(!toggle_perspective(Figure::of(StageName::VertexLight)).affine);
@@ -396,7 +415,7 @@ mod tests {
         assert!(parse_script("8")
             .unwrap_err()
             .starts_with("unknown key '8'"));
-        assert!(parse_script("x").is_err());
+        assert!(parse_script("z").is_err());
         assert!(parse_script("7,c,h,esc").is_ok());
         assert!(parse_script("up*x").is_err());
         assert_eq!(

@@ -7,6 +7,9 @@
 //! - `explain rows A B C ...`: a polygon's exact edges, the pixels `Interpolate` puts
 //!   on each edge, each row's start and end, and the filled rows (section 4), with
 //!   the printout of `rasterlab rows` beside them.
+//! - `explain edge A B C`: the exact rasterizer on a triangle given in fractions of
+//!   a pixel: each pixel's centre, the pixels covered, and the centres that lie
+//!   exactly on an edge, in or out by the top-left rule.
 
 use crate::measure::plot::{Canvas, Rgb, BLACK, DARK, GREY};
 use crate::pipeline::interpolate::{line_pixels, Pixel, Steps};
@@ -232,6 +235,119 @@ pub fn explain_rows(vertices: &[(i32, i32)]) -> Result<Frame, String> {
     Ok(c.frame)
 }
 
+/// `explain edge A B C`: the exact rasterizer (`--raster edge`) on one triangle
+/// whose corners are image positions in pixels (fractions allowed): the pixels it
+/// covers (light), every pixel centre (small dots), and the centres exactly on an
+/// edge, taken by the top-left rule (green) or left to the neighbour (red).
+pub fn explain_edge(corners: &[(f32, f32); 3]) -> Result<Frame, String> {
+    use crate::pipeline::clip::ScreenVertex;
+    use crate::pipeline::raster::edge::SUBPIXEL;
+    use crate::pipeline::raster::{EdgeRaster, Rasterizer, Viewport};
+    let cells: Vec<(i32, i32)> = corners
+        .iter()
+        .map(|&(x, y)| (x.floor() as i32, y.floor() as i32))
+        .collect();
+    let grid = Grid::around(&cells)?;
+    // The grid's pixels as an image whose top-left pixel is (min.0, min.1).
+    let (ox, oy) = grid.min;
+    let viewport = Viewport {
+        half_width: 0,
+        half_height: 0,
+        centre: (0.0, 0.0),
+        bounds: Bounds {
+            x: ox..ox + grid.cells.0,
+            y: oy..oy + grid.cells.1,
+        },
+    };
+    let vertices = corners.map(|(x, y)| ScreenVertex {
+        x,
+        y,
+        zinv: 1.0,
+        varying: crate::pipeline::Nothing {},
+    });
+    let mut covered = Vec::new();
+    EdgeRaster::polygon(&mut (), &vertices, &viewport, |p| covered.push((p.x, p.y)));
+    // Centres exactly on an edge, in the same fixed point the rasterizer uses.
+    let snap = |(x, y): (f32, f32)| {
+        (
+            (x * SUBPIXEL as f32).round() as i64,
+            (y * SUBPIXEL as f32).round() as i64,
+        )
+    };
+    let s = corners.map(snap);
+    let on_edge = |px: i64, py: i64| {
+        (0..3).any(|k| {
+            let (a, b) = (s[k], s[(k + 1) % 3]);
+            let cross = (b.0 - a.0) * (py - a.1) - (b.1 - a.1) * (px - a.0);
+            let within = px >= a.0.min(b.0)
+                && px <= a.0.max(b.0)
+                && py >= a.1.min(b.1)
+                && py <= a.1.max(b.1);
+            cross == 0 && within
+        })
+    };
+    let mut text = vec![format!("{} pixels covered", covered.len())];
+    text.extend(
+        corners
+            .iter()
+            .zip(&s)
+            .map(|(c, f)| format!("({}, {}) snaps to ({}, {})/256", c.0, c.1, f.0, f.1)),
+    );
+    text.extend(
+        [
+            "",
+            "light cells: covered (centre inside)",
+            "dots: pixel centres",
+            "green: centre on an edge, taken",
+            "red: centre on an edge, left out",
+            "(the top-left rule: taken when the inside",
+            "is to its right, or below a flat edge)",
+        ]
+        .map(String::from),
+    );
+    let mut c = canvas_for(
+        &grid,
+        "The edge rasterizer: centres and the top-left rule",
+        &text,
+    );
+    for &(x, y) in &covered {
+        grid.fill(&mut c, x, y, FILLED);
+    }
+    grid.draw_lines(&mut c);
+    let at = |(x, y): (f32, f32)| {
+        let (cx, cy) = grid.corner(ox, oy);
+        (
+            cx + ((x - ox as f32) * grid.cell as f32).round() as i32,
+            cy + ((y - oy as f32) * grid.cell as f32).round() as i32,
+        )
+    };
+    for k in 0..3 {
+        c.line(at(corners[k]), at(corners[(k + 1) % 3]), EXACT, 2);
+    }
+    for j in 0..grid.cells.1 {
+        for i in 0..grid.cells.0 {
+            let (x, y) = (ox + i, oy + j);
+            let (px, py) = (
+                SUBPIXEL * x as i64 + SUBPIXEL / 2,
+                SUBPIXEL * y as i64 + SUBPIXEL / 2,
+            );
+            let color = match (on_edge(px, py), covered.contains(&(x, y))) {
+                (true, true) => EDGE_COLORS[0],
+                (true, false) => EDGE_COLORS[2],
+                (false, _) => DARK,
+            };
+            let (cx, cy) = grid.centre(x, y);
+            let r = if color == DARK {
+                1
+            } else {
+                (grid.cell / 6).max(2)
+            };
+            c.rect((cx - r, cy - r), (2 * r + 1, 2 * r + 1), color);
+        }
+    }
+    Ok(c.frame)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -268,5 +384,19 @@ mod tests {
         assert_eq!(at(15, 15), ROW_END);
         assert_eq!(at(4, 10), WHITE, "outside the polygon");
         assert!(explain_rows(&[(0, 0), (100, 0), (0, 5)]).is_err());
+    }
+
+    #[test]
+    fn edge_marks_centres_on_edges() {
+        // A right triangle whose legs run through pixel centres (x = 0.5, y = 0.5):
+        // the centres on the left leg are taken, those on the hypotenuse are not.
+        let f = explain_edge(&[(0.5, 0.5), (6.5, 0.5), (0.5, 6.5)]).unwrap();
+        let grid = Grid::around(&[(0, 0), (6, 0), (0, 6)]).unwrap();
+        let centre = |x: i32, y: i32| {
+            let (cx, cy) = grid.centre(x, y);
+            f.color[(cy as u32 * f.width + cx as u32) as usize]
+        };
+        assert_eq!(centre(0, 3), EDGE_COLORS[0], "left leg: taken");
+        assert_eq!(centre(3, 3), EDGE_COLORS[2], "hypotenuse: left out");
     }
 }

@@ -14,6 +14,7 @@ use crate::measure::plot::Canvas;
 use crate::measure::timing::{time_runs, Timing};
 use crate::measure::{raytrace, report, stress};
 use crate::pipeline::camera::DEFAULT_NEAR;
+use crate::pipeline::draw::Stats;
 use crate::pipeline::interpolate::Pixel;
 use crate::pipeline::raster::rows::{compute_polygon_rows, Rows};
 use crate::pipeline::raster::Bounds;
@@ -103,13 +104,41 @@ pub fn render(
     settings: &Settings,
     runs: Option<usize>,
 ) -> (Frame, Option<Timing>) {
+    let (frame, timing, _) = render_with_stats(figure, mesh, settings, runs);
+    (frame, timing)
+}
+
+/// [`render`], with what the frame did.
+pub fn render_with_stats(
+    figure: Figure,
+    mesh: &Mesh,
+    settings: &Settings,
+    runs: Option<usize>,
+) -> (Frame, Option<Timing>, Stats) {
     let (camera, uniforms) = (settings.camera(), settings.uniforms());
     let mut pipeline = figure.pipeline_for(mesh);
     let mut frame = Frame::default();
     pipeline.render(mesh, &camera, &uniforms, &mut frame);
+    let stats = pipeline.stats();
     let timing =
         runs.map(|n| time_runs(n, || pipeline.render(mesh, &camera, &uniforms, &mut frame)));
-    (frame, timing)
+    (frame, timing, stats)
+}
+
+/// `--stats`: the frame's counts, one per line, and what was left out and why.
+pub fn stats_text(s: &Stats) -> String {
+    let mut out = format!(
+        "triangles: {} in, {} culled, {} outside the view, {} clipped, {} drawn\n\
+         pixels: {} written, {} rejected by the depth test\n",
+        s.triangles, s.culled, s.outside, s.clipped, s.drawn, s.pixels_written, s.depth_rejected
+    );
+    if s.near_plane_skipped {
+        out += "left out: near-plane clipping (the whole mesh is in front of the near plane)\n";
+    }
+    if s.view_tests_skipped {
+        out += "left out: view tests (the whole mesh projects inside the screen)\n";
+    }
+    out
 }
 
 /// Draws `figure` of the Cornell box and writes it to `out`: its colours, or with
@@ -120,13 +149,13 @@ pub fn render_to_file(
     out: &Path,
     runs: Option<usize>,
     buffer: bool,
-) -> Result<Option<Timing>, WriteError> {
-    let (frame, timing) = render(figure, &cornell_box(), settings, runs);
+) -> Result<(Option<Timing>, Stats), WriteError> {
+    let (frame, timing, stats) = render_with_stats(figure, &cornell_box(), settings, runs);
     match buffer {
         true => write_png(&depth_buffer_picture(&frame), out)?,
         false => write_png(&frame, out)?,
     }
-    Ok(timing)
+    Ok((timing, stats))
 }
 
 /// The image built up triangle by triangle: frame i shows the first i triangles of

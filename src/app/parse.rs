@@ -113,6 +113,17 @@ pub fn gif_path(s: &str) -> Result<std::path::PathBuf, String> {
     }
 }
 
+/// `X,Y` in pixels, fractions allowed: a point for `explain edge`.
+pub fn point_f32(s: &str) -> Result<(f32, f32), String> {
+    let v = numbers(s, 2, "a point X,Y such as 1.5,0.5")?;
+    if v.iter().any(|c| c.abs() > MAX_ROWS_COORDINATE as f32) {
+        return Err(format!(
+            "coordinates must be within -{MAX_ROWS_COORDINATE}..{MAX_ROWS_COORDINATE}, got '{s}'"
+        ));
+    }
+    Ok((v[0], v[1]))
+}
+
 /// The largest coordinate `rasterlab rows` takes, so a polygon's rows always fit.
 pub const MAX_ROWS_COORDINATE: i32 = 10_000;
 

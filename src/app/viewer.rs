@@ -6,7 +6,7 @@
 use super::controls::{self, action, pressed, Action, Controls, Key, MouseLook};
 use super::image_io::write_png;
 use super::Settings;
-use crate::measure::figure::{Figure, StageName};
+use crate::measure::figure::{Figure, Raster, StageName};
 use crate::pipeline::{Frame, Render};
 use crate::scene::cornell_box;
 use std::collections::VecDeque;
@@ -59,7 +59,7 @@ pub fn command_for(view: Figure, s: &Settings) -> String {
     let mut command = format!(
         "rasterlab {}{} --size {}x{} --focal {} --camera {} --yaw {} --pitch {}",
         view.stage.name(),
-        view.interpolation_flag(),
+        view.flags(),
         s.width,
         s.height,
         s.focal,
@@ -101,8 +101,12 @@ fn title(view: Figure, frame_times: &VecDeque<Duration>, draw: Duration) -> Stri
     } else {
         "perspective-correct"
     };
+    let raster = match view.raster {
+        Raster::Rows => "rows",
+        Raster::Edge => "edge",
+    };
     format!(
-        "rasterlab: {} ({}), frame {:.1} ms, draw {:.1} ms - h for keys",
+        "rasterlab: {} ({}, {raster} rasterizer), frame {:.1} ms, draw {:.1} ms - h for keys",
         view.stage.name(),
         interpolation,
         median(frame_times.iter().copied()).as_secs_f64() * 1e3,
@@ -227,11 +231,16 @@ pub fn run(options: Options) -> Result<Summary, String> {
         for key in pressed(&held, &held_before) {
             match action(key) {
                 Some(Action::Show(v)) => {
-                    view = v;
+                    // A figure key keeps the rasterizer and culling chosen.
+                    view = v.with_raster(view.raster).with_cull(view.cull);
                     pipeline = view.pipeline_for(&scene);
                 }
                 Some(Action::TogglePerspective) => {
                     view = controls::toggle_perspective(view);
+                    pipeline = view.pipeline_for(&scene);
+                }
+                Some(Action::ToggleRaster) => {
+                    view = controls::toggle_raster(view);
                     pipeline = view.pipeline_for(&scene);
                 }
                 Some(Action::Save) => save(&frame, &free_capture_path(view))?,

@@ -219,7 +219,10 @@ impl Figure {
     /// The image file a stage subcommand writes without `-o`: the label's words
     /// joined, so `pixel-light --affine` does not overwrite `pixel-light.png`.
     pub fn default_file(self) -> String {
-        let words = self.flags().replace(" --interpolation ", " ").replace(" --", " ");
+        let words = self
+            .flags()
+            .replace(" --interpolation ", " ")
+            .replace(" --", " ");
         let words: Vec<&str> = words.split_whitespace().collect();
         if words.is_empty() {
             format!("{}.png", self.stage.name())
@@ -234,7 +237,9 @@ impl Figure {
         match (self.affine, self.raster) {
             (false, Raster::Rows) => with_types::<Perspective, RowRaster, W>(self.stage, smooth, w),
             (true, Raster::Rows) => with_types::<Affine, RowRaster, W>(self.stage, smooth, w),
-            (false, Raster::Edge) => with_types::<Perspective, EdgeRaster, W>(self.stage, smooth, w),
+            (false, Raster::Edge) => {
+                with_types::<Perspective, EdgeRaster, W>(self.stage, smooth, w)
+            }
             (true, Raster::Edge) => with_types::<Affine, EdgeRaster, W>(self.stage, smooth, w),
         }
     }
@@ -248,7 +253,8 @@ impl Figure {
     /// Draws this figure of `mesh` into a new frame.
     pub fn render(self, mesh: &Mesh, camera: &Camera, uniforms: &Uniforms) -> Frame {
         let mut frame = Frame::default();
-        self.pipeline_for(mesh).render(mesh, camera, uniforms, &mut frame);
+        self.pipeline_for(mesh)
+            .render(mesh, camera, uniforms, &mut frame);
         frame
     }
 }

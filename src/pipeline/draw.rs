@@ -482,7 +482,11 @@ impl Screen {
             .fold((first, first), |(lo, hi), &p| (lo.min(p), hi.max(p)));
         let corners = (0..8).map(|i| {
             let pick = |bit: usize, l: f32, h: f32| if i & bit == 0 { l } else { h };
-            let p = glam::Vec3::new(pick(1, lo.x, hi.x), pick(2, lo.y, hi.y), pick(4, lo.z, hi.z));
+            let p = glam::Vec3::new(
+                pick(1, lo.x, hi.x),
+                pick(2, lo.y, hi.y),
+                pick(4, lo.z, hi.z),
+            );
             self.projection.to_camera(p)
         });
         let near = self.near.unwrap_or(f32::MIN_POSITIVE);
@@ -492,13 +496,10 @@ impl Screen {
         };
         for c in corners {
             fit.in_front &= c.z >= near && c.z.is_finite();
-            let on_screen = self
-                .projection
-                .project_centred(c)
-                .is_some_and(|(x, y, _)| {
-                    (self.rect.left..=self.rect.right).contains(&x)
-                        && (self.rect.top..=self.rect.bottom).contains(&y)
-                });
+            let on_screen = self.projection.project_centred(c).is_some_and(|(x, y, _)| {
+                (self.rect.left..=self.rect.right).contains(&x)
+                    && (self.rect.top..=self.rect.bottom).contains(&y)
+            });
             fit.inside &= c.z >= near && on_screen;
         }
         fit.in_front |= self.near.is_none();

@@ -132,7 +132,10 @@ fn triangle<V: Varying>(
         let px = s * first_i + h;
         let mut e = edges.map(|(edge, from)| edge.at(from.x, from.y, px, py));
         for i in first_i..=last_i {
-            if e.iter().zip(&edges).all(|(&v, (edge, _))| v - edge.bias >= 0) {
+            if e.iter()
+                .zip(&edges)
+                .all(|(&v, (edge, _))| v - edge.bias >= 0)
+            {
                 let w = e.map(|v| v as f32 * inv_area);
                 plot(Pixel {
                     x: i as i32,
@@ -245,12 +248,13 @@ mod tests {
 
     #[test]
     fn weights_interpolate_linearly_at_centres() {
-        let v = [(0.0, 0.0, 0.0f32), (8.0, 0.0, 8.0), (0.0, 8.0, 0.0)].map(|(x, y, q)| ScreenVertex {
-            x: x - 8.0,
-            y: y - 8.0,
-            zinv: 1.0,
-            varying: q,
-        });
+        let v =
+            [(0.0, 0.0, 0.0f32), (8.0, 0.0, 8.0), (0.0, 8.0, 0.0)].map(|(x, y, q)| ScreenVertex {
+                x: x - 8.0,
+                y: y - 8.0,
+                zinv: 1.0,
+                varying: q,
+            });
         let mut seen = 0;
         EdgeRaster::polygon(&mut (), &v, &viewport(16, 16), |p| {
             // q = x at the centre, x + 0.5.
