@@ -2,7 +2,7 @@
 
 use crate::pipeline::camera::Projection;
 use crate::pipeline::target::unpack;
-use crate::pipeline::{Camera, Frame, Mesh, Triangle};
+use crate::pipeline::{Camera, Frame, Mesh};
 
 /// Error of an image against a reference, in 8-bit units over all three channels.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -76,15 +76,17 @@ pub fn interior_mask(
     height: u32,
     margin: u32,
 ) -> Vec<bool> {
-    // Two triangles of one wall are one surface: name surfaces by their first triangle.
-    let scene: Vec<Triangle> = mesh.triangles().collect();
-    let surface: Vec<usize> = scene
-        .iter()
-        .map(|t| {
-            scene
-                .iter()
-                .position(|u| u.normal == t.normal && u.color == t.color)
-                .unwrap_or(0)
+    // Two triangles of one wall are one surface: name surfaces by their first
+    // triangle with that normal and colour (a map, so this stays linear).
+    let mut first = std::collections::HashMap::new();
+    let surface: Vec<usize> = mesh
+        .triangles()
+        .enumerate()
+        .map(|(i, t)| {
+            // `+ 0.0` makes -0 and 0 one key, as `==` would.
+            let bits = |v: glam::Vec3| v.to_array().map(|c| (c + 0.0).to_bits());
+            let key = (bits(t.normal), bits(t.color));
+            *first.entry(key).or_insert(i)
         })
         .collect();
     let id = |x: u32, y: u32| hit[(y * width + x) as usize].map(|i| surface[i as usize]);
@@ -184,6 +186,7 @@ pub fn edge_pixels_within_one_pixel(mesh: &Mesh, camera: &Camera, frame: &Frame)
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::pipeline::Triangle;
 
     #[test]
     fn identical_images_have_no_error() {

@@ -2,6 +2,7 @@
 //! and its plot, and the catalogue of hard cases. They use the pipeline and the
 //! scenes; [`figure`] names the stages and figures they measure.
 
+pub mod bvh;
 pub mod figure;
 pub mod heat;
 pub mod metrics;

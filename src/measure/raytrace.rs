@@ -3,6 +3,7 @@
 //! rasterizer ([`Light::reflected`]). Everything the rasterizer's stages are
 //! measured against (`rasterlab report`) comes from here.
 
+use crate::measure::bvh::Bvh;
 use crate::pipeline::target::pack;
 use crate::pipeline::{Camera, Frame, Light, Mesh, Triangle};
 use glam::Vec3;
@@ -72,42 +73,76 @@ pub fn intersect(origin: Vec3, dir: Vec3, tri: &Triangle, t_min: f32) -> Option<
     (t > t_min).then_some(t)
 }
 
-/// The nearest hit along a ray beyond `t_min`: (distance, triangle index).
-pub fn nearest(scene: &[Triangle], origin: Vec3, dir: Vec3, t_min: f32) -> Option<(f32, usize)> {
-    let mut best: Option<(f32, usize)> = None;
-    for (i, tri) in scene.iter().enumerate() {
-        if let Some(t) = intersect(origin, dir, tri, t_min) {
-            if best.is_none_or(|(b, _)| t < b) {
-                best = Some((t, i));
-            }
+/// What a ray can hit: the mesh's triangles in a [`Bvh`], and its vertex normals
+/// for smooth shading where it has them.
+pub struct Scene {
+    pub bvh: Bvh,
+    /// Per face, its three vertex normals; empty for a mesh without them.
+    normals: Vec<[Vec3; 3]>,
+}
+
+impl Scene {
+    pub fn new(mesh: &Mesh) -> Scene {
+        let normals = if mesh.normals.is_empty() {
+            Vec::new()
+        } else {
+            mesh.faces
+                .iter()
+                .map(|f| f.vertices.map(|i| mesh.normals[i as usize]))
+                .collect()
+        };
+        Scene {
+            bvh: Bvh::new(mesh.triangles().collect()),
+            normals,
         }
     }
-    best
+
+    /// The surface normal of triangle `i` at `hit`: the face's, or its vertex
+    /// normals weighted by the hit's barycentric coordinates, renormalised.
+    fn normal(&self, i: usize, hit: Vec3) -> Vec3 {
+        let tri = &self.bvh.triangles[i];
+        let Some(n) = self.normals.get(i) else {
+            return tri.normal;
+        };
+        let (e1, e2, p) = (tri.v1 - tri.v0, tri.v2 - tri.v0, hit - tri.v0);
+        let (d11, d12, d22) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
+        let (dp1, dp2) = (p.dot(e1), p.dot(e2));
+        let det = d11 * d22 - d12 * d12;
+        if det == 0.0 {
+            return tri.normal;
+        }
+        let u = (d22 * dp1 - d12 * dp2) / det;
+        let v = (d11 * dp2 - d12 * dp1) / det;
+        (n[0] * (1.0 - u - v) + n[1] * u + n[2] * v).normalize_or_zero()
+    }
 }
 
 /// The colour one ray brings back (black for a miss) and the triangle it hit.
 pub fn trace(
-    scene: &[Triangle],
+    scene: &Scene,
     light: &Light,
     origin: Vec3,
     dir: Vec3,
     options: &Options,
 ) -> (Vec3, Option<usize>) {
-    let Some((t, i)) = nearest(scene, origin, dir, 0.0) else {
+    let Some((t, i)) = scene.bvh.nearest(origin, dir, 0.0) else {
         return (Vec3::ZERO, None);
     };
-    let tri = &scene[i];
+    let tri = &scene.bvh.triangles[i];
     let color = match options.shading {
         Shading::Flat => tri.color,
         Shading::Lit => {
             let hit = origin + dir * t;
             let to_light = light.position - hit;
             let blocked = options.shadows
-                && nearest(scene, hit, to_light, 1e-4).is_some_and(|(s, _)| s < 1.0);
+                && scene
+                    .bvh
+                    .nearest(hit, to_light, 1e-4)
+                    .is_some_and(|(s, _)| s < 1.0);
             if blocked {
                 tri.color * light.indirect
             } else {
-                light.reflected(hit, tri.normal, tri.color)
+                light.reflected(hit, scene.normal(i, hit), tri.color)
             }
         }
     };
@@ -118,8 +153,7 @@ pub fn trace(
 /// through camera-space (sx - W/2, sy - H/2, f), the inverse of the rasterizer's
 /// projection, and pixel (x, y) is sampled at (x + 0.5, y + 0.5).
 pub fn raytrace(mesh: &Mesh, camera: &Camera, light: &Light, options: &Options) -> Traced {
-    let scene: Vec<Triangle> = mesh.triangles().collect();
-    let scene = &scene[..];
+    let scene = &Scene::new(mesh);
     let (w, h) = (camera.width, camera.height);
     let [right, down, forward] = camera.axes();
     let (half_w, half_h) = ((w / 2) as f32, (h / 2) as f32);
@@ -218,7 +252,7 @@ mod tests {
         // (-0.33, 0.4, 0.27), meets the floor near (-0.55, 1, 0.92). A ray from just
         // above that point straight down hits the floor; with shadows it gets only
         // the indirect term, 0.5 times the floor's reflectance.
-        let scene: Vec<Triangle> = cornell_box().triangles().collect();
+        let scene = Scene::new(&cornell_box());
         let light = Light::handout();
         let eye = Vec3::new(-0.55, 0.5, 0.92);
         let opts = Options {
