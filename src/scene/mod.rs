@@ -1,6 +1,89 @@
 //! What builds meshes for the pipeline: the handout's Cornell box and its
-//! subdivisions.
+//! subdivisions, procedural scenes (a sphere, a floor grid) and OBJ model files,
+//! chosen by a scene spec (`parse_scene`).
 
 pub mod cornell;
+pub mod obj;
+pub mod procedural;
 
 pub use cornell::{cornell_box, subdivide};
+pub use obj::{load_obj, write_obj};
+pub use procedural::{grid, sphere};
+
+use crate::pipeline::Mesh;
+use glam::Vec3;
+use std::path::Path;
+
+/// A mesh to draw, with what framing it needs.
+#[derive(Clone, Debug)]
+pub struct Scene {
+    /// The spec for a built-in scene (`cornell:4`), the file's name without its
+    /// extension for a model (`bunny`).
+    pub name: String,
+    pub mesh: Mesh,
+    /// The handout's box, possibly subdivided: drawn with the handout's default
+    /// camera and light rather than framed by its bounding sphere.
+    pub is_box: bool,
+}
+
+/// The scene a spec names: `cornell` (the default), `cornell:K` (the box with each
+/// triangle split into K² by `subdivide`, K from 1 to 256), `sphere:N` (about N
+/// triangles, N from 8 to 4 000 000), `grid:N` (about N triangles, N from 2 to
+/// 4 000 000), or a path ending in `.obj` (any case). The error is one line.
+pub fn parse_scene(spec: &str) -> Result<Scene, String> {
+    if spec.to_lowercase().ends_with(".obj") {
+        let path = Path::new(spec);
+        let name = path.file_stem().unwrap_or_default().to_string_lossy();
+        return Ok(Scene {
+            name: name.into_owned(),
+            mesh: load_obj(path)?,
+            is_box: false,
+        });
+    }
+    let (kind, count) = match spec.split_once(':') {
+        Some((kind, count)) => (kind, Some(count)),
+        None => (spec, None),
+    };
+    let number = |low: usize, high: usize| match count.map(|c| (c, c.parse::<usize>())) {
+        Some((_, Ok(n))) if (low..=high).contains(&n) => Ok(n),
+        Some((c, _)) => Err(format!(
+            "scene {kind}:N needs a whole number N from {low} to {high}, not '{c}'"
+        )),
+        None => Err(format!("scene {kind} needs a count: {kind}:N")),
+    };
+    let (mesh, is_box) = match (kind, count) {
+        ("cornell", None) => (cornell_box(), true),
+        ("cornell", Some(_)) => (subdivide(&cornell_box(), number(1, 256)? as u32), true),
+        ("sphere", _) => (sphere(number(8, 4_000_000)?), false),
+        ("grid", _) => (grid(number(2, 4_000_000)?), false),
+        _ => {
+            return Err(format!(
+                "unknown scene '{spec}': expected cornell, cornell:K, sphere:N, grid:N or a file ending in .obj"
+            ))
+        }
+    };
+    Ok(Scene {
+        name: spec.to_string(),
+        mesh,
+        is_box,
+    })
+}
+
+/// A sphere around every vertex: the centre of their axis-aligned bounding box and
+/// the largest distance from it to a vertex; `(0, 0)` for a mesh without vertices.
+pub fn bounding_sphere(mesh: &Mesh) -> (Vec3, f32) {
+    let Some(&first) = mesh.positions.first() else {
+        return (Vec3::ZERO, 0.0);
+    };
+    let (low, high) = mesh
+        .positions
+        .iter()
+        .fold((first, first), |(low, high), &p| (low.min(p), high.max(p)));
+    let centre = (low + high) / 2.0;
+    let radius = mesh
+        .positions
+        .iter()
+        .map(|p| p.distance(centre))
+        .fold(0.0, f32::max);
+    (centre, radius)
+}

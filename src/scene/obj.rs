@@ -1,0 +1,398 @@
+//! Model files: Wavefront OBJ with its MTL materials, read with the `tobj` crate
+//! and written back, by the rules of the design notes' "Models" section.
+//!
+//! - A file is y up and right-handed, a model faces +z and its front faces are
+//!   counter-clockwise seen from the front. Loading turns it half a turn about x:
+//!   every position and normal `(x, y, z)` becomes `(x, -y, -z)` (y down, facing a
+//!   camera that looks along +z), and every face `(a, b, c)` becomes `(a, c, b)`,
+//!   so that the handout's normal `(v2 - v0) x (v1 - v0)` is the front face's.
+//!   Writing applies the same two maps, which are their own inverses.
+//! - A polygon becomes a fan from its first vertex, `(v0, v1, v2), (v0, v2, v3),
+//!   ...`, before that map: tobj's `triangulate` splits polygons exactly so.
+//! - One index addresses a vertex's position, normal and texture coordinate (tobj's
+//!   `single_index`); tobj numbers the vertices of each object, group or material
+//!   run in order of first use and drops the unused ones.
+//! - A face's colour is its material's `Kd` clamped to [0, 1]. A face without a
+//!   material, whose material the MTL files do not define, or whose material has no
+//!   `Kd` is (0.75, 0.75, 0.75).
+//! - A material library that the OBJ names but that cannot be read is an error
+//!   naming it: silently grey models would hide a missing file.
+//! - Vertex normals are kept (renormalised) when every vertex has one, texture
+//!   coordinates (v up, as written) when every vertex has one; otherwise none are,
+//!   and the face normals light the model. A zero vertex normal takes the normal of
+//!   the first face that uses it.
+//! - Errors are one line naming the file and, where it is known, the line.
+//!   Points and lines (`f 1`, `f 1 2`, `l 1 2`) are skipped.
+
+use super::cornell::WHITE;
+use crate::pipeline::mesh::{face_normal, Face, Material, Mesh};
+use glam::{Vec2, Vec3};
+use std::cell::RefCell;
+use std::collections::HashMap;
+use std::fmt::Write as _;
+use std::fs::{self, File};
+use std::io::{self, BufRead, BufReader, Read};
+use std::path::{Path, PathBuf};
+
+/// The largest model loaded; a larger one is refused before tobj stores it.
+pub const MAX_TRIANGLES: usize = 10_000_000;
+
+/// The half turn about x between a file's axes and ours; its own inverse.
+fn flip(v: Vec3) -> Vec3 {
+    Vec3::new(v.x, -v.y, -v.z)
+}
+
+/// Reads an OBJ file (and the MTL files it names) into a mesh.
+pub fn load_obj(path: &Path) -> Result<Mesh, String> {
+    let fail = |why: String| format!("{}: {why}", path.display());
+    let file = File::open(path).map_err(|e| fail(format!("cannot open: {e}")))?;
+    let mut reader = Lines::new(BufReader::new(file), Kind::Obj);
+    let dir = path.parent().unwrap_or(Path::new(""));
+    let mtl_error = RefCell::new(None);
+    let options = tobj::LoadOptions {
+        triangulate: true,
+        single_index: true,
+        ignore_points: true,
+        ignore_lines: true,
+    };
+    let loaded = tobj::load_obj_buf(&mut reader, &options, |name| {
+        load_mtl(&dir.join(name)).map_err(|why| {
+            mtl_error.borrow_mut().get_or_insert(why);
+            tobj::LoadError::GenericFailure
+        })
+    });
+    let (models, materials) = loaded.map_err(|e| {
+        use tobj::LoadError::*;
+        match reader.stop.take() {
+            Some(why) => fail(why),
+            // These are found when tobj gathers an object's faces, after reading
+            // on: the current line is not theirs.
+            None if matches!(
+                e,
+                FaceVertexOutOfBounds
+                    | FaceTexCoordOutOfBounds
+                    | FaceNormalOutOfBounds
+                    | FaceColorOutOfBounds
+                    | InvalidPolygon
+            ) =>
+            {
+                fail(e.to_string())
+            }
+            None => fail(format!("line {}: {e}", reader.line)),
+        }
+    })?;
+    if let Some(why) = mtl_error.into_inner() {
+        return Err(fail(why));
+    }
+    let materials = materials.unwrap_or_default();
+    to_mesh(&models, &materials).map_err(fail)
+}
+
+/// Reads one MTL file; the error names it and, where known, the line.
+fn load_mtl(path: &Path) -> Result<(Vec<tobj::Material>, HashMap<String, usize>), String> {
+    let fail = |why: String| format!("material library {}: {why}", path.display());
+    let file = File::open(path).map_err(|e| fail(format!("cannot open: {e}")))?;
+    let mut reader = Lines::new(BufReader::new(file), Kind::Mtl);
+    tobj::load_mtl_buf(&mut reader).map_err(|e| {
+        fail(
+            reader
+                .stop
+                .take()
+                .unwrap_or_else(|| format!("line {}: {e}", reader.line)),
+        )
+    })
+}
+
+/// Our mesh from tobj's models: the map to our axes, one material per MTL material
+/// (plus the default grey when a face needs it).
+fn to_mesh(models: &[tobj::Model], materials: &[tobj::Material]) -> Result<Mesh, String> {
+    let mut mesh = Mesh {
+        materials: materials
+            .iter()
+            .map(|m| Material {
+                color: m
+                    .diffuse
+                    .map_or(WHITE, |kd| Vec3::from(kd).clamp(Vec3::ZERO, Vec3::ONE)),
+            })
+            .collect(),
+        ..Mesh::default()
+    };
+    let mut default = None; // the grey material's index, once a face needs it
+    let (mut all_normals, mut all_uvs) = (true, true);
+    let vec3s = |xs: &[f32]| -> Vec<Vec3> {
+        xs.chunks_exact(3)
+            .map(|v| flip(Vec3::new(v[0], v[1], v[2])))
+            .collect()
+    };
+    for model in models {
+        let m = &model.mesh;
+        let first = mesh.positions.len() as u32;
+        mesh.positions.extend(vec3s(&m.positions));
+        // tobj leaves out the normal or texture coordinate of a vertex that has
+        // none, so the lists line up with the positions only when all have one.
+        all_normals &= m.normals.len() == m.positions.len();
+        all_uvs &= m.texcoords.len() / 2 == m.positions.len() / 3;
+        if all_normals {
+            mesh.normals.extend(vec3s(&m.normals));
+        }
+        if all_uvs {
+            mesh.uvs
+                .extend(m.texcoords.chunks_exact(2).map(|t| Vec2::new(t[0], t[1])));
+        }
+        let material = match m.material_id {
+            Some(i) if i < materials.len() => i as u32,
+            _ => *default.get_or_insert_with(|| {
+                mesh.materials.push(Material { color: WHITE });
+                mesh.materials.len() as u32 - 1
+            }),
+        };
+        for t in m.indices.chunks_exact(3) {
+            let vertices = [first + t[0], first + t[2], first + t[1]];
+            let normal = face_normal(vertices.map(|i| mesh.positions[i as usize]));
+            mesh.faces.push(Face {
+                vertices,
+                normal,
+                material,
+            });
+        }
+    }
+    if !all_normals {
+        mesh.normals.clear();
+    }
+    if !all_uvs {
+        mesh.uvs.clear();
+    }
+    if mesh.faces.is_empty() {
+        return Err("no faces: nothing to draw".into());
+    }
+    let finite = mesh
+        .positions
+        .iter()
+        .chain(&mesh.normals)
+        .all(|v| v.is_finite())
+        && mesh.uvs.iter().all(|t| t.is_finite());
+    if !finite {
+        return Err("a coordinate is NaN or infinite".into());
+    }
+    // A normal that is already unit length (to f32 rounding) is kept bit for bit,
+    // so a written mesh loads back unchanged.
+    for n in &mut mesh.normals {
+        let len2 = n.length_squared();
+        if len2 > 0.0 && (len2 - 1.0).abs() > 1e-5 {
+            *n /= len2.sqrt();
+        }
+    }
+    if !mesh.normals.is_empty() {
+        for f in &mesh.faces {
+            for &i in &f.vertices {
+                if mesh.normals[i as usize] == Vec3::ZERO {
+                    mesh.normals[i as usize] = f.normal;
+                }
+            }
+        }
+    }
+    Ok(mesh)
+}
+
+/// Writes `mesh` as an OBJ file at `path` and its materials as an MTL file beside
+/// it (same name, `.mtl`), by the module's rules: loading them gives back the same
+/// positions, normals, texture coordinates, faces and colours, bit for bit, for a
+/// mesh whose vertices are numbered in order of first use as the file lists them
+/// and not shared between materials (the box, `sphere`, `grid`). Each file is
+/// written whole to a temporary file and renamed into place.
+pub fn write_obj(mesh: &Mesh, path: &Path) -> Result<(), String> {
+    let fail = |why: String| format!("cannot write {}: {why}", path.display());
+    let n = mesh.positions.len();
+    let consistent = (mesh.normals.is_empty() || mesh.normals.len() == n)
+        && (mesh.uvs.is_empty() || mesh.uvs.len() == n)
+        && mesh.faces.iter().all(|f| {
+            f.vertices.iter().all(|&i| (i as usize) < n)
+                && (f.material as usize) < mesh.materials.len()
+        });
+    if !consistent {
+        return Err(fail(
+            "the mesh refers to vertices or materials it does not have".into(),
+        ));
+    }
+    let finite = mesh
+        .positions
+        .iter()
+        .chain(&mesh.normals)
+        .all(|v| v.is_finite())
+        && mesh.uvs.iter().all(|t| t.is_finite())
+        && mesh.materials.iter().all(|m| m.color.is_finite());
+    if !finite {
+        return Err(fail("a coordinate or colour is NaN or infinite".into()));
+    }
+    let mtl_path = path.with_extension("mtl");
+    let mtl_name = mtl_path
+        .file_name()
+        .ok_or_else(|| fail("not a file name".into()))?
+        .to_string_lossy();
+
+    // `{}` prints an f32 with the fewest digits that read back as the same f32.
+    let mut mtl = String::from("# rasterlab: the materials of the model beside it\n");
+    for (i, m) in mesh.materials.iter().enumerate() {
+        let c = m.color;
+        let _ = writeln!(mtl, "newmtl m{i}\nKd {} {} {}", c.x, c.y, c.z);
+    }
+    let mut obj = String::from("# rasterlab: y up, front faces counter-clockwise\n");
+    let _ = writeln!(obj, "mtllib {mtl_name}");
+    for p in mesh.positions.iter().map(|&p| flip(p)) {
+        let _ = writeln!(obj, "v {} {} {}", p.x, p.y, p.z);
+    }
+    for t in &mesh.uvs {
+        let _ = writeln!(obj, "vt {} {}", t.x, t.y);
+    }
+    for v in mesh.normals.iter().map(|&v| flip(v)) {
+        let _ = writeln!(obj, "vn {} {} {}", v.x, v.y, v.z);
+    }
+    let (uvs, normals) = (!mesh.uvs.is_empty(), !mesh.normals.is_empty());
+    let mut material = None;
+    for f in &mesh.faces {
+        if material != Some(f.material) {
+            material = Some(f.material);
+            let _ = writeln!(obj, "usemtl m{}", f.material);
+        }
+        obj.push('f');
+        let [a, b, c] = f.vertices;
+        for i in [a, c, b].map(|i| i + 1) {
+            let _ = match (uvs, normals) {
+                (false, false) => write!(obj, " {i}"),
+                (true, false) => write!(obj, " {i}/{i}"),
+                (false, true) => write!(obj, " {i}//{i}"),
+                (true, true) => write!(obj, " {i}/{i}/{i}"),
+            };
+        }
+        obj.push('\n');
+    }
+    write_whole(&mtl_path, &mtl)?;
+    write_whole(path, &obj)
+}
+
+/// Writes `text` to a temporary file beside `path` and renames it into place, so
+/// that no reader ever sees half a file.
+fn write_whole(path: &Path, text: &str) -> Result<(), String> {
+    let mut tmp = path.as_os_str().to_owned();
+    tmp.push(format!(".{}.tmp", std::process::id()));
+    let tmp = PathBuf::from(tmp);
+    let result = fs::write(&tmp, text).and_then(|()| fs::rename(&tmp, path));
+    if result.is_err() {
+        let _ = fs::remove_file(&tmp);
+    }
+    result.map_err(|e| format!("cannot write {}: {e}", path.display()))
+}
+
+#[derive(Clone, Copy, PartialEq)]
+enum Kind {
+    Obj,
+    Mtl,
+}
+
+/// The file as tobj reads it, a line at a time: counts the lines, so that errors
+/// can name one, and stops tobj, with the reason in `stop`, at a line it must not
+/// read on: a number that is NaN or infinite, an index that tobj's arithmetic
+/// would overflow on (a panic in builds with overflow checks), an MTL colour
+/// without three values (tobj 4.0.5 panics on it), or more than MAX_TRIANGLES
+/// triangles.
+struct Lines<R> {
+    inner: R,
+    kind: Kind,
+    /// Lines read so far.
+    line: usize,
+    /// `v`, `vt` and `vn` lines so far: a negative index counts back from these.
+    counts: [usize; 3],
+    triangles: usize,
+    stop: Option<String>,
+}
+
+impl<R: BufRead> Lines<R> {
+    fn new(inner: R, kind: Kind) -> Self {
+        Lines {
+            inner,
+            kind,
+            line: 0,
+            counts: [0; 3],
+            triangles: 0,
+            stop: None,
+        }
+    }
+
+    fn check(&mut self, line: &str) -> Result<(), String> {
+        let mut words = line.split_whitespace();
+        let first = words.next().unwrap_or("");
+        match (self.kind, first) {
+            (Kind::Obj, "f" | "l") => return self.check_face(words),
+            (Kind::Obj, "v") => self.counts[0] += 1,
+            (Kind::Obj, "vt") => self.counts[1] += 1,
+            (Kind::Obj, "vn") => self.counts[2] += 1,
+            (Kind::Mtl, "Ka" | "Kd" | "Ks" | "Ke") if words.clone().count() < 3 => {
+                return Err(format!("{first} needs three numbers"))
+            }
+            (Kind::Mtl, "Ka" | "Kd" | "Ks" | "Ke") => {}
+            _ => return Ok(()),
+        }
+        // Words that are not numbers at all are tobj's to report.
+        match words.any(|w| w.parse::<f32>().is_ok_and(|x| !x.is_finite())) {
+            true => Err("a number is NaN or infinite".into()),
+            false => Ok(()),
+        }
+    }
+
+    fn check_face<'a>(&mut self, corners: impl Iterator<Item = &'a str>) -> Result<(), String> {
+        let mut n = 0;
+        for corner in corners {
+            n += 1;
+            // position/texture/normal; a negative index counts back.
+            for (k, index) in corner.split('/').take(3).enumerate() {
+                let Ok(i) = index.parse::<i64>() else {
+                    continue;
+                };
+                if i == 0
+                    || i > u32::MAX as i64
+                    || (i < 0 && i.unsigned_abs() > self.counts[k] as u64)
+                {
+                    return Err(format!("index {i} is out of range"));
+                }
+            }
+        }
+        self.triangles += n.max(2) - 2;
+        if self.triangles > MAX_TRIANGLES {
+            return Err(format!(
+                "more than {MAX_TRIANGLES} triangles: the model is too large to load"
+            ));
+        }
+        Ok(())
+    }
+}
+
+impl<R: BufRead> Read for Lines<R> {
+    fn read(&mut self, buf: &mut [u8]) -> io::Result<usize> {
+        self.inner.read(buf)
+    }
+}
+
+impl<R: BufRead> BufRead for Lines<R> {
+    fn fill_buf(&mut self) -> io::Result<&[u8]> {
+        self.inner.fill_buf()
+    }
+
+    fn consume(&mut self, amount: usize) {
+        self.inner.consume(amount)
+    }
+
+    /// tobj reads with `lines()`, which reads each line through this.
+    fn read_line(&mut self, text: &mut String) -> io::Result<usize> {
+        let n = self.inner.read_line(text).inspect_err(|e| {
+            self.stop = Some(format!("line {}: {e}", self.line + 1));
+        })?;
+        if n > 0 {
+            self.line += 1;
+            if let Err(why) = self.check(text) {
+                self.stop = Some(format!("line {}: {why}", self.line));
+                return Err(io::Error::other(why));
+            }
+        }
+        Ok(n)
+    }
+}

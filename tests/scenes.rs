@@ -1,0 +1,381 @@
+//! The scene layer: the procedural meshes, OBJ loading and writing by the design
+//! notes' "Models" rules, the shipped models in docs/models, and scene specs.
+
+use glam::{Vec2, Vec3};
+use rasterlab::pipeline::mesh::face_normal;
+use rasterlab::pipeline::{Mesh, Triangle};
+use rasterlab::scene::{
+    bounding_sphere, cornell_box, grid, load_obj, parse_scene, sphere, write_obj,
+};
+use std::fs;
+use std::path::{Path, PathBuf};
+
+/// A folder of its own under the system's temporary folder, removed when dropped
+/// (also when the test fails).
+struct TempDir(PathBuf);
+
+impl TempDir {
+    fn new(name: &str) -> Self {
+        let dir = std::env::temp_dir().join(format!("rasterlab-{name}-{}", std::process::id()));
+        let _ = fs::remove_dir_all(&dir);
+        fs::create_dir_all(&dir).unwrap();
+        TempDir(dir)
+    }
+
+    /// Writes `text` to `name` in the folder and returns its path.
+    fn file(&self, name: &str, text: impl AsRef<[u8]>) -> PathBuf {
+        let path = self.0.join(name);
+        fs::write(&path, text).unwrap();
+        path
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = fs::remove_dir_all(&self.0);
+    }
+}
+
+fn bits3(v: Vec3) -> [u32; 3] {
+    v.to_array().map(f32::to_bits)
+}
+
+fn bits2(v: Vec2) -> [u32; 2] {
+    v.to_array().map(f32::to_bits)
+}
+
+/// Every number of a triangle as bits: -0 and 0 differ, as they must.
+fn triangle_bits(t: &Triangle) -> Vec<[u32; 3]> {
+    [t.v0, t.v1, t.v2, t.normal, t.color].map(bits3).to_vec()
+}
+
+fn assert_same_triangles(a: &Mesh, b: &Mesh) {
+    let (a, b): (Vec<_>, Vec<_>) = (
+        a.triangles().map(|t| triangle_bits(&t)).collect(),
+        b.triangles().map(|t| triangle_bits(&t)).collect(),
+    );
+    assert_eq!(a.len(), b.len());
+    for (i, (a, b)) in a.iter().zip(&b).enumerate() {
+        assert_eq!(a, b, "triangle {i}");
+    }
+}
+
+/// Positions, normals, texture coordinates, faces and colours, bit for bit.
+fn assert_same_mesh(a: &Mesh, b: &Mesh) {
+    let v3 = |v: &[Vec3]| v.iter().map(|&v| bits3(v)).collect::<Vec<_>>();
+    let v2 = |v: &[Vec2]| v.iter().map(|&v| bits2(v)).collect::<Vec<_>>();
+    let faces = |m: &Mesh| {
+        m.faces
+            .iter()
+            .map(|f| (f.vertices, bits3(f.normal), f.material))
+            .collect::<Vec<_>>()
+    };
+    let colors = |m: &Mesh| {
+        m.materials
+            .iter()
+            .map(|m| bits3(m.color))
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(v3(&a.positions), v3(&b.positions), "positions");
+    assert_eq!(v3(&a.normals), v3(&b.normals), "normals");
+    assert_eq!(v2(&a.uvs), v2(&b.uvs), "texture coordinates");
+    assert_eq!(faces(a), faces(b), "faces");
+    assert_eq!(colors(a), colors(b), "colours");
+}
+
+fn round_trip(mesh: &Mesh, dir: &TempDir, name: &str) -> Mesh {
+    let path = dir.0.join(name);
+    write_obj(mesh, &path).unwrap();
+    assert!(path.with_extension("mtl").is_file());
+    load_obj(&path).unwrap()
+}
+
+#[test]
+fn the_box_sphere_and_grid_survive_writing_and_loading() {
+    let dir = TempDir::new("round-trip");
+    let cornell = cornell_box();
+    assert_same_triangles(&round_trip(&cornell, &dir, "box.obj"), &cornell);
+    for mesh in [sphere(960), sphere(50), grid(200), grid(2)] {
+        assert_same_mesh(&round_trip(&mesh, &dir, "mesh.obj"), &mesh);
+    }
+    // Nothing left behind but the two files.
+    let mut names: Vec<_> = fs::read_dir(&dir.0)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    names.sort();
+    assert_eq!(names, ["box.mtl", "box.obj", "mesh.mtl", "mesh.obj"]);
+}
+
+/// docs/models/NAME.obj and .mtl are what `write_obj` writes now; with
+/// RASTERLAB_UPDATE_MODELS=1 the test rewrites them instead.
+#[test]
+fn the_shipped_models_are_current() {
+    let models = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/models");
+    let dir = TempDir::new("models");
+    for (name, mesh) in [("cornell", cornell_box()), ("sphere", sphere(960))] {
+        if std::env::var_os("RASTERLAB_UPDATE_MODELS").is_some() {
+            write_obj(&mesh, &models.join(format!("{name}.obj"))).unwrap();
+        }
+        write_obj(&mesh, &dir.0.join(format!("{name}.obj"))).unwrap();
+        for ext in ["obj", "mtl"] {
+            let file = format!("{name}.{ext}");
+            let shipped = fs::read(models.join(&file)).unwrap_or_default();
+            assert!(
+                shipped == fs::read(dir.0.join(&file)).unwrap(),
+                "docs/models/{file} is stale: run RASTERLAB_UPDATE_MODELS=1 cargo test --release --test scenes"
+            );
+        }
+    }
+    let loaded = load_obj(&models.join("cornell.obj")).unwrap();
+    assert_same_triangles(&loaded, &cornell_box());
+    assert_same_mesh(&load_obj(&models.join("sphere.obj")).unwrap(), &sphere(960));
+}
+
+#[test]
+fn bad_files_are_one_line_errors() {
+    let dir = TempDir::new("bad");
+    let tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+    // After three vertices (lines 1 to 3), each case's lines.
+    let mut cases: Vec<(&str, Vec<u8>, &str)> = [
+        ("points", "p 1\nl 1 2\nf 1 2\n", "no faces"),
+        ("number", "v 1 x 0\n", "line 4: position parse error"),
+        ("face", "f 1 2 x\n", "line 4: face parse error"),
+        ("range", "f 1 2 4\n", "face vertex index out of bounds"),
+        ("zero", "f 0 1 2\n", "line 4: index 0 is out of range"),
+        ("back", "f -1 -2 -4\n", "line 4: index -4 is out of range"),
+        ("normal", "vn 0 0 1\nf 1//1 2//0 3//1\n", "line 5: index 0"),
+        ("nan", "v nan 0 0\nf 1 2 4\n", "line 4: a number is NaN"),
+        ("inf", "v 1e39 0 0\nf 1 2 4\n", "line 4: a number is NaN"),
+        ("w", "v 1 1 1 1e-45\nf 1 2 4\n", "NaN or infinite"),
+        ("uv", "vt inf 0\nf 1 2 3\n", "line 4: a number is NaN"),
+    ]
+    .map(|(name, rest, expected)| (name, format!("{tri}{rest}").into_bytes(), expected))
+    .into();
+    cases.push(("nothing", vec![], "no faces"));
+    let not_utf8 = [tri.as_bytes(), b"# \xff\nf 1 2 3\n"].concat();
+    cases.push(("utf8", not_utf8, "line 4"));
+    // One polygon of 10 000 003 corners: 10 000 001 triangles.
+    let big = format!("{tri}f{}\n", " 1".repeat(10_000_003));
+    cases.push(("big", big.into_bytes(), "too large"));
+    for (name, bytes, expected) in &cases {
+        let path = dir.file(&format!("{name}.obj"), bytes);
+        let err = load_obj(&path).expect_err(name);
+        assert!(
+            err.starts_with(&format!("{}: ", path.display())),
+            "{name}: {err}"
+        );
+        assert!(err.contains(expected), "{name}: {err}");
+        assert!(!err.contains('\n'), "{name}: {err}");
+    }
+    let missing = dir.0.join("missing.obj");
+    let err = load_obj(&missing).unwrap_err();
+    assert!(
+        err.contains("missing.obj") && err.contains("cannot open"),
+        "{err}"
+    );
+
+    // Material libraries: missing, or broken in a way tobj reports or panics on.
+    let uses = |mtl: &str| format!("mtllib {mtl}\n{tri}usemtl a\nf 1 2 3\n");
+    for (name, mtl, expected) in [
+        ("absent", None, "cannot open"),
+        (
+            "short",
+            Some("newmtl a\nKd 0.5 0.5\n"),
+            "line 2: Kd needs three numbers",
+        ),
+        (
+            "word",
+            Some("newmtl a\nKd 0.5 red 0.5\n"),
+            "line 2: material parse error",
+        ),
+        (
+            "nan",
+            Some("newmtl a\nKd 0.5 NaN 0.5\n"),
+            "line 2: a number is NaN",
+        ),
+    ] {
+        if let Some(text) = mtl {
+            dir.file(&format!("{name}.mtl"), text);
+        }
+        let path = dir.file(&format!("{name}.obj"), uses(&format!("{name}.mtl")));
+        let err = load_obj(&path).unwrap_err();
+        let library = format!(
+            "material library {}",
+            dir.0.join(format!("{name}.mtl")).display()
+        );
+        assert!(err.contains(&library), "{name}: {err}");
+        assert!(err.contains(expected), "{name}: {err}");
+    }
+}
+
+#[test]
+fn polygons_are_fans_from_their_first_vertex_before_the_half_turn() {
+    let dir = TempDir::new("fan");
+    let path = dir.file(
+        "quad.obj",
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv -0.5 0.5 0\nvn 0 0 2\nf 1//1 2//1 3//1 4//1\nf 1//1 2//1 3//1 4//1 5//1\n",
+    );
+    let mesh = load_obj(&path).unwrap();
+    let faces: Vec<[u32; 3]> = mesh.faces.iter().map(|f| f.vertices).collect();
+    // (0, 1, 2), (0, 2, 3) in the file; each turned into (a, c, b). tobj numbers
+    // the second polygon's vertices on from the first's (the same vertices).
+    assert_eq!(
+        faces,
+        [[0, 2, 1], [0, 3, 2], [0, 2, 1], [0, 3, 2], [0, 4, 3]]
+    );
+    let flip = |x: f32, y: f32, z: f32| Vec3::new(x, -y, -z);
+    assert_eq!(
+        mesh.positions[..4],
+        [
+            flip(0.0, 0.0, 0.0),
+            flip(1.0, 0.0, 0.0),
+            flip(1.0, 1.0, 0.0),
+            flip(0.0, 1.0, 0.0),
+        ]
+    );
+    // Counter-clockwise seen from +z in the file: facing the camera (toward -z)
+    // here, and the vertex normal (0, 0, 2) mapped and renormalised.
+    for f in &mesh.faces {
+        assert_eq!(f.normal, Vec3::NEG_Z);
+        assert_eq!(
+            f.normal,
+            face_normal(f.vertices.map(|i| mesh.positions[i as usize]))
+        );
+    }
+    assert!(mesh.normals.iter().all(|&n| n == Vec3::NEG_Z));
+    assert!(mesh.uvs.is_empty());
+}
+
+#[test]
+fn colours_are_kd_clamped_or_grey() {
+    let dir = TempDir::new("kd");
+    dir.file(
+        "m.mtl",
+        "newmtl hot\nKd 1.5 -0.25 0.5\nnewmtl plain\nKa 1 1 1\n",
+    );
+    let path = dir.file(
+        "m.obj",
+        "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nusemtl hot\nf 1 2 3\nusemtl unknown\nf 1 2 3\nusemtl plain\nf 1 2 3\n",
+    );
+    let mesh = load_obj(&path).unwrap();
+    let colors: Vec<Vec3> = mesh.triangles().map(|t| t.color).collect();
+    let grey = Vec3::splat(0.75);
+    assert_eq!(colors, [grey, Vec3::new(1.0, 0.0, 0.5), grey, grey]);
+}
+
+#[test]
+fn the_sphere_is_round_and_faces_outward() {
+    for n in [8, 100, 960, 20_000] {
+        let mesh = sphere(n);
+        let count = mesh.faces.len();
+        assert!(count >= 48, "{n}: {count}");
+        if n >= 100 {
+            assert!((count as f32 / n as f32 - 1.0).abs() < 0.1, "{n}: {count}");
+        }
+        assert_eq!(mesh.normals.len(), mesh.positions.len());
+        assert_eq!(mesh.uvs.len(), mesh.positions.len());
+        for (p, n) in mesh.positions.iter().zip(&mesh.normals) {
+            assert!((n.length() - 1.0).abs() < 1e-6, "{n}");
+            assert!((p.length() - 1.0).abs() < 1e-6, "{p}");
+            assert!(n.dot(*p) > 0.999, "{n} at {p}");
+        }
+        for t in mesh.triangles() {
+            let centre = (t.v0 + t.v1 + t.v2) / 3.0;
+            assert!((t.normal.length() - 1.0).abs() < 1e-5, "degenerate: {t:?}");
+            assert!(t.normal.dot(centre.normalize()) > 0.9, "{t:?}");
+        }
+        for uv in &mesh.uvs {
+            assert!(
+                uv.cmpge(Vec2::ZERO).all() && uv.cmple(Vec2::ONE).all(),
+                "{uv}"
+            );
+        }
+        // v is 1 at the top (y = -1: y points down) and 0 at the bottom.
+        for (p, uv) in mesh.positions.iter().zip(&mesh.uvs) {
+            assert!(((1.0 - p.y) / 2.0 - uv.y).abs() < 0.2, "{p} {uv}");
+        }
+    }
+}
+
+#[test]
+fn the_grid_is_a_green_floor_facing_up() {
+    for (n, squares) in [(2, 1), (200, 10), (5000, 50)] {
+        let mesh = grid(n);
+        assert_eq!(mesh.faces.len(), 2 * squares * squares);
+        assert_eq!(
+            mesh.positions.len(),
+            (squares + 1) * (squares + 1),
+            "shared vertices"
+        );
+        for t in mesh.triangles() {
+            assert!(t.normal.abs_diff_eq(Vec3::NEG_Y, 1e-6), "{}", t.normal);
+            assert_eq!(t.color, Vec3::new(0.15, 0.75, 0.15));
+            for v in t.vertices() {
+                assert!(v.y == 1.0 && v.x.abs() <= 1.0 && v.z.abs() <= 1.0, "{v}");
+            }
+        }
+        assert!(mesh.normals.iter().all(|&n| n == Vec3::NEG_Y));
+        let (low, high) = mesh
+            .uvs
+            .iter()
+            .fold((Vec2::ONE, Vec2::ZERO), |(l, h), &t| (l.min(t), h.max(t)));
+        assert_eq!((low, high), (Vec2::ZERO, Vec2::ONE));
+    }
+}
+
+#[test]
+fn scene_specs() {
+    let cornell = parse_scene("cornell").unwrap();
+    assert!(cornell.is_box && cornell.name == "cornell");
+    assert_eq!(cornell.mesh, cornell_box());
+    let sub = parse_scene("cornell:3").unwrap();
+    assert!(sub.is_box && sub.mesh.faces.len() == 30 * 9);
+    let s = parse_scene("sphere:960").unwrap();
+    assert!(!s.is_box && s.mesh == sphere(960));
+    assert_eq!(parse_scene("grid:2").unwrap().mesh, grid(2));
+    let models = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/models");
+    let file = parse_scene(models.join("cornell.obj").to_str().unwrap()).unwrap();
+    assert!(!file.is_box && file.name == "cornell");
+    let dir = TempDir::new("spec");
+    dir.file("UPPER.OBJ", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    assert_eq!(
+        parse_scene(dir.0.join("UPPER.OBJ").to_str().unwrap())
+            .unwrap()
+            .mesh
+            .faces
+            .len(),
+        1
+    );
+
+    for (spec, expected) in [
+        ("", "unknown scene"),
+        ("cube", "unknown scene"),
+        ("cornell:0", "from 1 to 256"),
+        ("cornell:257", "from 1 to 256"),
+        ("cornell:x", "'x'"),
+        ("sphere", "needs a count"),
+        ("sphere:7", "from 8 to 4000000"),
+        ("sphere:4000001", "from 8 to 4000000"),
+        ("grid:1", "from 2 to 4000000"),
+        ("grid:-5", "'-5'"),
+        ("nowhere/missing.obj", "cannot open"),
+    ] {
+        let err = parse_scene(spec).map(|s| s.name).unwrap_err();
+        assert!(
+            err.contains(expected) && !err.contains('\n'),
+            "{spec}: {err}"
+        );
+    }
+}
+
+#[test]
+fn bounding_spheres() {
+    let (centre, radius) = bounding_sphere(&cornell_box());
+    assert!(centre.abs().max_element() < 1e-6, "{centre}");
+    assert!((radius - 3f32.sqrt()).abs() < 1e-5, "{radius}");
+    let (centre, radius) = bounding_sphere(&grid(8));
+    assert_eq!(centre, Vec3::new(0.0, 1.0, 0.0));
+    assert!((radius - 2f32.sqrt()).abs() < 1e-6);
+    assert_eq!(bounding_sphere(&Mesh::default()), (Vec3::ZERO, 0.0));
+}
