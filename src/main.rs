@@ -7,6 +7,7 @@ use rasterlab::app::{self, controls, explain, parse, viewer, Settings};
 use rasterlab::measure::figure::Raster;
 use rasterlab::measure::raytrace;
 use rasterlab::pipeline::draw::Cull;
+use rasterlab::scene::{framed_pose, parse_scene, write_obj, Scene};
 use rasterlab::{Figure, StageName};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -60,6 +61,9 @@ enum Command {
     /// interpolation; c saves a PNG; h prints the keys; Esc quits. On exit the
     /// command that renders the last frame to a file is printed on stderr.
     View(ViewArgs),
+    /// Writes a scene as a Wavefront OBJ file with its MTL beside it (the design
+    /// notes' conventions), so any scene can be loaded back or opened elsewhere.
+    Export(ExportArgs),
     /// Draws a stage triangle by triangle into an animated GIF, so the order of
     /// drawing shows: Figure 4's mistake (`animate filled`) and its fix (`animate depth`).
     Animate(AnimateArgs),
@@ -73,9 +77,14 @@ enum Command {
     Rows(RowsArgs),
 }
 
-/// The view: image size, camera and light. Vectors are X,Y,Z and may be negative.
+/// The view: scene, image size, camera and light. Vectors are X,Y,Z and may be
+/// negative.
 #[derive(Args, Debug)]
 struct SceneArgs {
+    /// What to draw: cornell (the handout's box), cornell:K (each triangle split
+    /// K x K), sphere:N, grid:N (about N triangles), or a model file PATH.obj.
+    #[arg(long, value_name = "SCENE", default_value = "cornell")]
+    scene: String,
     /// Image size in pixels, WIDTHxHEIGHT.
     #[arg(long, value_name = "WxH", default_value = "500x500", value_parser = parse::size,
           allow_hyphen_values = true)]
@@ -84,10 +93,10 @@ struct SceneArgs {
     #[arg(long, value_name = "F", default_value = "500", value_parser = parse::positive,
           allow_hyphen_values = true)]
     focal: f32,
-    /// Camera position C (eq. 5) in world space; y points down.
-    #[arg(long, value_name = "X,Y,Z", default_value = "0,0,-3.001",
-          value_parser = parse::vec3, allow_hyphen_values = true)]
-    camera: Vec3,
+    /// Camera position C (eq. 5) in world space; y points down [default: 0,0,-3.001
+    /// for the box; other scenes are framed, and the pose used is printed].
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse::vec3, allow_hyphen_values = true)]
+    camera: Option<Vec3>,
     /// Turn about the y-axis, in degrees; positive turns right.
     #[arg(long, value_name = "DEG", default_value = "0", value_parser = parse::finite,
           allow_hyphen_values = true)]
@@ -96,14 +105,14 @@ struct SceneArgs {
     #[arg(long, value_name = "DEG", default_value = "0", value_parser = parse::finite,
           allow_hyphen_values = true)]
     pitch: f32,
-    /// Light position (section 6.1).
-    #[arg(long, value_name = "X,Y,Z", default_value = "0,-0.5,-0.7",
-          value_parser = parse::vec3, allow_hyphen_values = true)]
-    light: Vec3,
-    /// Light power P of eq. 10, the same in each channel (lab 2 used 14).
-    #[arg(long, value_name = "P", default_value = "1.1", value_parser = parse::finite,
-          allow_hyphen_values = true)]
-    light_power: f32,
+    /// Light position (section 6.1) [default: 0,-0.5,-0.7 for the box; for other
+    /// scenes the same place relative to the scene, scaled].
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse::vec3, allow_hyphen_values = true)]
+    light: Option<Vec3>,
+    /// Light power P of eq. 10, the same in each channel (lab 2 used 14) [default:
+    /// 1.1 for the box; for other scenes scaled with the scene's size squared].
+    #[arg(long, value_name = "P", value_parser = parse::finite, allow_hyphen_values = true)]
+    light_power: Option<f32>,
     /// Indirect light N of eq. 11, the same in each channel.
     #[arg(long, value_name = "N", default_value = "0.5", value_parser = parse::finite,
           allow_hyphen_values = true)]
@@ -119,21 +128,53 @@ struct SceneArgs {
 }
 
 impl SceneArgs {
-    fn settings(&self) -> Settings {
-        Settings {
+    /// The scene and the settings to draw it with: what the command line gives,
+    /// and where it gives no camera or light, the framing of the scene (printed, so
+    /// the image can be made again with explicit options).
+    fn resolve(&self) -> Result<(Scene, Settings), Failure> {
+        let scene = load_scene(&self.scene)?;
+        let mut settings = Settings {
             width: self.size.0,
             height: self.size.1,
             focal: self.focal,
-            camera: self.camera,
             yaw: self.yaw,
             pitch: self.pitch,
-            light: self.light,
-            light_power: self.light_power,
             indirect: self.indirect,
             near: self.near,
             clip: !self.no_clip,
+            ..Settings::default()
+        };
+        let forward = settings.camera().axes()[2];
+        let pose = framed_pose(&scene, forward, self.focal, self.size.0, self.size.1);
+        settings.camera = self.camera.unwrap_or(pose.camera);
+        settings.light = self.light.unwrap_or(pose.light);
+        settings.light_power = self.light_power.unwrap_or(pose.light_power);
+        let framed = self.camera.is_none() || self.light.is_none() || self.light_power.is_none();
+        if framed && !scene.is_box {
+            let v = |v: Vec3| format!("{},{},{}", v.x, v.y, v.z);
+            eprintln!(
+                "scene {} ({} triangles): --camera {} --light {} --light-power {}",
+                scene.name,
+                scene.mesh.faces.len(),
+                v(settings.camera),
+                v(settings.light),
+                settings.light_power
+            );
         }
+        Ok((scene, settings))
     }
+}
+
+/// The scene a `--scene` spec names: a bad spec is a usage error, a model file
+/// that cannot be read a failure.
+fn load_scene(spec: &str) -> Result<Scene, Failure> {
+    parse_scene(spec).map_err(|e| {
+        if spec.to_lowercase().ends_with(".obj") {
+            Failure::Run(e)
+        } else {
+            Failure::Usage(e)
+        }
+    })
 }
 
 #[derive(Args, Debug)]
@@ -261,6 +302,9 @@ struct RaytraceArgs {
 
 #[derive(Args, Debug)]
 struct ReportArgs {
+    /// What to measure: cornell (the default), cornell:K, sphere:N, grid:N or PATH.obj.
+    #[arg(long, value_name = "SCENE", default_value = "cornell")]
+    scene: String,
     /// Folder for report.md, report.csv and error-vs-time.png (created if missing).
     #[arg(long, value_name = "DIR", default_value = "report")]
     out: PathBuf,
@@ -299,6 +343,16 @@ struct ViewArgs {
     fps: u64,
     #[command(flatten)]
     scene: SceneArgs,
+}
+
+#[derive(Args, Debug)]
+struct ExportArgs {
+    /// The scene: cornell, cornell:K, sphere:N, grid:N or PATH.obj.
+    #[arg(long, value_name = "SCENE", default_value = "cornell")]
+    scene: String,
+    /// The OBJ file to write; the MTL goes beside it.
+    #[arg(short, long, value_name = "FILE.obj", value_parser = parse::obj_path)]
+    out: PathBuf,
 }
 
 #[derive(Args, Debug)]
@@ -390,7 +444,7 @@ fn print_out(text: &str) -> Result<(), String> {
         .map_err(|e| e.to_string())
 }
 
-fn render(stage: StageName, args: &Render) -> Result<(), String> {
+fn render(stage: StageName, args: &Render) -> Result<(), Failure> {
     let figure = args.draw.figure(stage);
     let out = args.out.clone().unwrap_or_else(|| {
         let name = figure.default_file();
@@ -399,10 +453,11 @@ fn render(stage: StageName, args: &Render) -> Result<(), String> {
             false => name,
         })
     });
-    let settings = args.scene.settings();
+    let (scene, settings) = args.scene.resolve()?;
     let runs = args.time.map(|n| n as usize);
-    let (timing, stats) = app::render_to_file(figure, &settings, &out, runs, args.buffer)
-        .map_err(|e| e.to_string())?;
+    let (timing, stats) =
+        app::render_to_file(figure, &scene.mesh, &settings, &out, runs, args.buffer)
+            .map_err(|e| e.to_string())?;
     if let Some(t) = timing {
         eprintln!("render: {t}");
     }
@@ -428,14 +483,17 @@ impl From<String> for Failure {
 
 fn run(cli: Cli) -> Result<(), Failure> {
     match &cli.command {
-        Command::Points(a) => Ok(render(StageName::Points, a)?),
-        Command::Wireframe(a) => Ok(render(StageName::Wireframe, a)?),
-        Command::Filled(a) => Ok(render(StageName::Filled, a)?),
-        Command::Depth(a) => Ok(render(StageName::Depth, a)?),
-        Command::VertexLight(a) => Ok(render(StageName::VertexLight, a)?),
-        Command::PixelLight(a) => Ok(render(StageName::PixelLight, a)?),
+        Command::Points(a) => render(StageName::Points, a),
+        Command::Wireframe(a) => render(StageName::Wireframe, a),
+        Command::Filled(a) => render(StageName::Filled, a),
+        Command::Depth(a) => render(StageName::Depth, a),
+        Command::VertexLight(a) => render(StageName::VertexLight, a),
+        Command::PixelLight(a) => render(StageName::PixelLight, a),
         Command::All(a) => {
-            for path in app::render_all(&a.scene.settings(), &a.out).map_err(|e| e.to_string())? {
+            let (scene, settings) = a.scene.resolve()?;
+            let written =
+                app::render_all(&scene.mesh, &settings, &a.out).map_err(|e| e.to_string())?;
+            for path in written {
                 eprintln!("wrote {}", path.display());
             }
             Ok(())
@@ -456,8 +514,10 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 .out
                 .clone()
                 .unwrap_or_else(|| PathBuf::from("raytrace.png"));
+            let (scene, settings) = a.render.scene.resolve()?;
             let timing = app::raytrace_to_file(
-                &a.render.scene.settings(),
+                &scene.mesh,
+                &settings,
                 &options,
                 &out,
                 a.render.time.map(|n| n as usize),
@@ -470,7 +530,8 @@ fn run(cli: Cli) -> Result<(), Failure> {
             Ok(())
         }
         Command::Report(a) => {
-            let written = app::report(&a.out, a.quick, |line| eprintln!("{line}"))
+            let scene = load_scene(&a.scene)?;
+            let written = app::report(&a.out, a.quick, &scene, |line| eprintln!("{line}"))
                 .map_err(|e| e.to_string())?;
             for path in written {
                 eprintln!("wrote {}", path.display());
@@ -486,8 +547,11 @@ fn run(cli: Cli) -> Result<(), Failure> {
             Ok(())
         }
         Command::View(a) => {
+            let (scene, settings) = a.scene.resolve()?;
             let options = viewer::Options {
-                settings: a.scene.settings(),
+                settings,
+                mesh: scene.mesh,
+                scene: a.scene.scene.clone(),
                 view: a.draw.figure(a.stage),
                 frames: a.frames,
                 screenshot: a.screenshot.clone(),
@@ -504,12 +568,22 @@ fn run(cli: Cli) -> Result<(), Failure> {
             eprintln!("view: last frame: {}", summary.reproduce());
             Ok(())
         }
+        Command::Export(a) => {
+            let scene = load_scene(&a.scene)?;
+            write_obj(&scene.mesh, &a.out)?;
+            eprintln!(
+                "wrote {} and its .mtl ({} triangles)",
+                a.out.display(),
+                scene.mesh.faces.len()
+            );
+            Ok(())
+        }
         Command::Animate(a) => {
             let figure = a.draw.figure(a.stage);
             let name = figure.default_file().replace(".png", ".gif");
             let out = a.out.clone().unwrap_or_else(|| PathBuf::from(name));
-            let settings = a.scene.settings();
-            let frames = app::animate_to_file(figure, &settings, &out, a.delay as u32)
+            let (scene, settings) = a.scene.resolve()?;
+            let frames = app::animate_to_file(figure, &scene.mesh, &settings, &out, a.delay as u32)
                 .map_err(|e| e.to_string())?;
             eprintln!("wrote {} ({frames} frames)", app::image_io::describe(&out));
             Ok(())

@@ -108,7 +108,10 @@ fn committed_pictures_match_the_code() {
     );
     // rasterlab report: the heat maps (deterministic, unlike its times)
     let plan = rasterlab::measure::report::Plan::full();
-    for (name, picture) in rasterlab::measure::report::heat_maps(&plan) {
+    for (name, picture) in rasterlab::measure::report::heat_maps(
+        &plan,
+        &rasterlab::scene::parse_scene("cornell").unwrap(),
+    ) {
         assert_picture(&docs().join("report").join(name), &picture);
     }
 }
@@ -121,7 +124,14 @@ fn committed_animations_match_the_code() {
     for stage in [rasterlab::StageName::Filled, rasterlab::StageName::Depth] {
         let name = format!("animate-{}.gif", stage.name());
         let out = dir.join(&name);
-        app::animate_to_file(Figure::of(stage), &Settings::default(), &out, 150).unwrap();
+        app::animate_to_file(
+            Figure::of(stage),
+            &cornell_box(),
+            &Settings::default(),
+            &out,
+            150,
+        )
+        .unwrap();
         let (made, committed) = (
             std::fs::read(&out).unwrap(),
             std::fs::read(steps().join(&name)).unwrap(),

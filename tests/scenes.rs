@@ -379,3 +379,29 @@ fn bounding_spheres() {
     assert!((radius - 2f32.sqrt()).abs() < 1e-6);
     assert_eq!(bounding_sphere(&Mesh::default()), (Vec3::ZERO, 0.0));
 }
+
+#[test]
+fn framing_fills_the_view_and_scales_the_light() {
+    use rasterlab::scene::{framed_pose, parse_scene, HANDOUT_POSE};
+    let forward = glam::Vec3::Z;
+    assert_eq!(
+        framed_pose(&parse_scene("cornell:2").unwrap(), forward, 500.0, 500, 500),
+        HANDOUT_POSE
+    );
+    // A unit sphere: half the view is atan(250 / 500); the sphere's radius fills
+    // 90 % of it.
+    let sphere = parse_scene("sphere:960").unwrap();
+    let p = framed_pose(&sphere, forward, 500.0, 500, 500);
+    let expected = 1.0 / (0.9 * (0.5f32).atan().sin());
+    assert!(
+        (p.camera - glam::Vec3::new(0.0, 0.0, -expected)).length() < 1e-4,
+        "{p:?}"
+    );
+    // The same sphere 1000 times larger: everything scales, power by a million.
+    let mut big = sphere.clone();
+    big.mesh = big.mesh.map_positions(|v| v * 1000.0);
+    let q = framed_pose(&big, forward, 500.0, 500, 500);
+    assert!((q.camera / 1000.0 - p.camera).length() < 1e-3, "{q:?}");
+    assert!((q.light / 1000.0 - p.light).length() < 1e-3);
+    assert!((q.light_power / p.light_power / 1e6 - 1.0).abs() < 1e-3);
+}

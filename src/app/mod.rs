@@ -19,7 +19,7 @@ use crate::pipeline::interpolate::Pixel;
 use crate::pipeline::raster::rows::{compute_polygon_rows, Rows};
 use crate::pipeline::raster::Bounds;
 use crate::pipeline::{Camera, Frame, Light, Mesh, Uniforms};
-use crate::scene::cornell_box;
+use crate::scene::Scene;
 use glam::Vec3;
 use image_io::{write_png, write_text, WriteError};
 use overview::figure_one;
@@ -141,16 +141,17 @@ pub fn stats_text(s: &Stats) -> String {
     out
 }
 
-/// Draws `figure` of the Cornell box and writes it to `out`: its colours, or with
+/// Draws `figure` of `mesh` and writes it to `out`: its colours, or with
 /// `buffer` its depth buffer as [`depth_buffer_picture`] shows it.
 pub fn render_to_file(
     figure: Figure,
+    mesh: &Mesh,
     settings: &Settings,
     out: &Path,
     runs: Option<usize>,
     buffer: bool,
 ) -> Result<(Option<Timing>, Stats), WriteError> {
-    let (frame, timing, stats) = render_with_stats(figure, &cornell_box(), settings, runs);
+    let (frame, timing, stats) = render_with_stats(figure, mesh, settings, runs);
     match buffer {
         true => write_png(&depth_buffer_picture(&frame), out)?,
         false => write_png(&frame, out)?,
@@ -181,15 +182,16 @@ pub fn build_up(figure: Figure, mesh: &Mesh, settings: &Settings, max_frames: us
     frames
 }
 
-/// `rasterlab animate`: [`build_up`] of the Cornell box written as a GIF that
+/// `rasterlab animate`: [`build_up`] of `mesh` written as a GIF that
 /// shows each triangle for `delay_ms` and the finished image for two seconds.
 pub fn animate_to_file(
     figure: Figure,
+    mesh: &Mesh,
     settings: &Settings,
     out: &Path,
     delay_ms: u32,
 ) -> Result<usize, WriteError> {
-    let frames = build_up(figure, &cornell_box(), settings, 60);
+    let frames = build_up(figure, mesh, settings, 60);
     let fail = |e: image::ImageError| WriteError {
         path: out.to_path_buf(),
         reason: e.to_string(),
@@ -276,16 +278,19 @@ pub const OVERVIEW_FILE: &str = "fig1-overview.png";
 
 /// Writes every figure, and the overview, into `dir` (created if missing).
 /// Returns the paths written, in order.
-pub fn render_all(settings: &Settings, dir: &Path) -> Result<Vec<PathBuf>, WriteError> {
+pub fn render_all(
+    mesh: &Mesh,
+    settings: &Settings,
+    dir: &Path,
+) -> Result<Vec<PathBuf>, WriteError> {
     std::fs::create_dir_all(dir).map_err(|e| WriteError {
         path: dir.to_path_buf(),
         reason: e.to_string(),
     })?;
-    let mesh = cornell_box();
     let mut written = Vec::new();
     let mut frames = Vec::new();
     for figure in Figure::FIGURES {
-        let (frame, _) = render(figure, &mesh, settings, None);
+        let (frame, _) = render(figure, mesh, settings, None);
         let path = dir.join(figure.figure_file());
         write_png(&frame, &path)?;
         written.push(path);
@@ -311,20 +316,20 @@ pub fn rows_text(vertices: &[(i32, i32)]) -> String {
     out
 }
 
-/// Ray-traces the Cornell box (the reference) and writes it to `out`; with `runs`,
+/// Ray-traces `scene` (the reference) and writes it to `out`; with `runs`,
 /// times that many traces.
 pub fn raytrace_to_file(
+    scene: &Mesh,
     settings: &Settings,
     options: &raytrace::Options,
     out: &Path,
     runs: Option<usize>,
 ) -> Result<Option<Timing>, WriteError> {
-    let scene = cornell_box();
     let (camera, light) = (settings.camera(), settings.light());
-    let mut traced = raytrace::raytrace(&scene, &camera, &light, options);
+    let mut traced = raytrace::raytrace(scene, &camera, &light, options);
     let timing = runs.map(|n| {
         time_runs(n, || {
-            traced = raytrace::raytrace(&scene, &camera, &light, options)
+            traced = raytrace::raytrace(scene, &camera, &light, options)
         })
     });
     write_png(&traced.frame, out)?;
@@ -351,6 +356,7 @@ pub fn machine() -> String {
 pub fn report(
     dir: &Path,
     quick: bool,
+    scene: &Scene,
     progress: impl FnMut(&str),
 ) -> Result<Vec<PathBuf>, WriteError> {
     let plan = if quick {
@@ -367,7 +373,7 @@ pub fn report(
     let probe = dir.join(format!(".rasterlab-write-check.{}", std::process::id()));
     std::fs::write(&probe, b"").map_err(fail)?;
     let _ = std::fs::remove_file(&probe);
-    let rows = report::measure_all(&plan, progress);
+    let rows = report::measure_all(&plan, scene, progress);
     let md = dir.join("report.md");
     let csv = dir.join("report.csv");
     let png = dir.join("error-vs-time.png");
@@ -377,7 +383,7 @@ pub fn report(
     write_text(&csv, &report::csv(&rows))?;
     write_png(&report::plot(&rows, &plan), &png)?;
     let mut written = vec![md, csv, png];
-    for (name, picture) in report::heat_maps(&plan) {
+    for (name, picture) in report::heat_maps(&plan, scene) {
         let path = dir.join(name);
         write_png(&picture, &path)?;
         written.push(path);

@@ -97,6 +97,22 @@ pub fn image_path(s: &str) -> Result<std::path::PathBuf, String> {
     }
 }
 
+/// Where a model goes: a file ending in `.obj`.
+pub fn obj_path(s: &str) -> Result<std::path::PathBuf, String> {
+    let path = std::path::PathBuf::from(s);
+    let obj = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("obj"));
+    if obj {
+        Ok(path)
+    } else {
+        Err(format!(
+            "a model is written as OBJ: name the file .obj, got '{s}'"
+        ))
+    }
+}
+
 /// Where an animation goes: a `.gif` file, or - for standard output.
 pub fn gif_path(s: &str) -> Result<std::path::PathBuf, String> {
     let path = std::path::PathBuf::from(s);

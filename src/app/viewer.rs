@@ -8,7 +8,6 @@ use super::image_io::write_png;
 use super::Settings;
 use crate::measure::figure::{Figure, Raster, StageName};
 use crate::pipeline::{Frame, Render};
-use crate::scene::cornell_box;
 use std::collections::VecDeque;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -17,6 +16,9 @@ use std::time::{Duration, Instant};
 #[derive(Clone, Debug)]
 pub struct Options {
     pub settings: Settings,
+    /// What the window shows, and the `--scene` spec that named it.
+    pub mesh: crate::pipeline::Mesh,
+    pub scene: String,
     pub view: Figure,
     /// Quit after this many frames.
     pub frames: Option<u64>,
@@ -43,12 +45,17 @@ pub struct Summary {
     pub draw_median: Duration,
     pub settings: Settings,
     pub view: Figure,
+    pub scene: String,
 }
 
 impl Summary {
     /// The render command that draws the last frame again.
     pub fn reproduce(&self) -> String {
-        command_for(self.view, &self.settings)
+        let command = command_for(self.view, &self.settings);
+        match self.scene.as_str() {
+            "cornell" => command,
+            scene => format!("{command} --scene {scene}"),
+        }
     }
 }
 
@@ -189,7 +196,7 @@ pub fn run(options: Options) -> Result<Summary, String> {
         })?;
     window.set_target_fps(options.fps);
 
-    let scene = cornell_box();
+    let scene = options.mesh.clone();
     let controls = Controls::default();
     let mut settings = options.settings;
     let mut view = options.view;
@@ -283,6 +290,7 @@ pub fn run(options: Options) -> Result<Summary, String> {
         draw_median: median(all_draws.into_iter()),
         settings,
         view,
+        scene: options.scene,
     })
 }
 

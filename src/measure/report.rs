@@ -12,7 +12,7 @@ use crate::measure::plot::{Canvas, LogLog, BLACK, DARK};
 use crate::measure::raytrace::{raytrace, Options, Shading, Traced};
 use crate::measure::timing::{time_runs, Timing};
 use crate::pipeline::{Camera, Frame, Light, Mesh, Uniforms};
-use crate::scene::{cornell_box, subdivide};
+use crate::scene::{framed_pose, subdivide, Pose, Scene};
 use std::fmt::Write as _;
 
 /// What one row measures against the reference.
@@ -129,17 +129,32 @@ pub fn measured_figures() -> Vec<Figure> {
 pub const RAYTRACE: &str = "raytrace";
 pub const RAYTRACE_SHADOWS: &str = "raytrace --shadows";
 
-fn camera_for(size: u32) -> Camera {
-    // The same view at every size: f scales with the image.
+/// The camera of a report at `size`: the pose's, with f scaled with the image so
+/// the view is the same at every size.
+fn camera_for(size: u32, pose: &Pose) -> Camera {
     Camera {
+        position: pose.camera,
         focal: size as f32,
         ..Camera::handout(size, size)
     }
 }
 
-fn reference(scene: &Mesh, size: u32, runs: usize) -> Reference {
-    let camera = camera_for(size);
-    let light = Light::handout();
+fn light_for(pose: &Pose) -> Light {
+    Light {
+        position: pose.light,
+        power: glam::Vec3::splat(pose.light_power),
+        ..Light::handout()
+    }
+}
+
+/// The pose a report draws `scene` in: the handout's for the box, framed otherwise.
+fn pose_for(scene: &Scene) -> Pose {
+    framed_pose(scene, glam::Vec3::Z, 1.0, 1, 1)
+}
+
+fn reference(scene: &Mesh, size: u32, runs: usize, pose: &Pose) -> Reference {
+    let camera = camera_for(size, pose);
+    let light = light_for(pose);
     let lit_options = Options::default();
     let mut lit = raytrace(scene, &camera, &light, &lit_options);
     let timing = time_runs(runs, || {
@@ -201,25 +216,29 @@ fn measure(
 }
 
 /// Measures everything in `plan`, printing progress to `progress`.
-pub fn measure_all(plan: &Plan, mut progress: impl FnMut(&str)) -> Vec<Row> {
-    let base = cornell_box();
+/// A scene other than the box is measured at k = 1 only: subdividing is the box's
+/// way of trading triangles for accuracy.
+pub fn measure_all(plan: &Plan, scene: &Scene, mut progress: impl FnMut(&str)) -> Vec<Row> {
+    let base = &scene.mesh;
+    let pose = pose_for(scene);
     let uniforms = Uniforms {
-        light: Light::handout(),
+        light: light_for(&pose),
     };
+    let plan_ks: &[u32] = if scene.is_box { &plan.ks } else { &[1] };
     let mut rows = Vec::new();
     let mut sizes = plan.sizes.clone();
     if !sizes.contains(&plan.k_size) {
         sizes.push(plan.k_size);
     }
     let figures = measured_figures();
-    let total = sizes.len() * (2 + figures.len()) + (plan.ks.len() - 1) * figures.len();
+    let total = sizes.len() * (2 + figures.len()) + (plan_ks.len() - 1) * figures.len();
     let mut done = 0;
     let mut step = |what: &str, ms: f64, progress: &mut dyn FnMut(&str)| {
         done += 1;
         progress(&format!("[{done:>3}/{total}] {what}: median {ms:.2} ms"));
     };
     for &size in &sizes {
-        let r = reference(&base, size, plan.runs);
+        let r = reference(base, size, plan.runs, &pose);
         let rt_ms = r.timing.median.as_secs_f64() * 1e3;
         let self_error = image_error(&r.lit.frame, &r.lit.frame, None);
         rows.push(Row {
@@ -254,10 +273,14 @@ pub fn measure_all(plan: &Plan, mut progress: impl FnMut(&str)) -> Vec<Row> {
             &mut progress,
         );
         rows.push(row);
-        let ks: &[u32] = if size == plan.k_size { &plan.ks } else { &[1] };
+        let ks: &[u32] = if size == plan.k_size { plan_ks } else { &[1] };
         for &k in ks {
-            let scene = subdivide(&base, k);
-            let camera = camera_for(size);
+            let scene = if k == 1 {
+                base.clone()
+            } else {
+                subdivide(base, k)
+            };
+            let camera = camera_for(size, &pose);
             for &view in &figures {
                 let mut pipeline = view.pipeline_for(&scene);
                 let mut frame = Frame::default();
@@ -265,7 +288,7 @@ pub fn measure_all(plan: &Plan, mut progress: impl FnMut(&str)) -> Vec<Row> {
                 let timing = time_runs(plan.runs, || {
                     pipeline.render(&scene, &camera, &uniforms, &mut frame)
                 });
-                let metric = measure(view, &base, &scene, &camera, &frame, &r, k);
+                let metric = measure(view, base, &scene, &camera, &frame, &r, k);
                 let row = Row {
                     stage: view.label(),
                     size,
@@ -441,24 +464,25 @@ fn conclusion_size(plan: &Plan) -> u32 {
 
 /// Where each lit stage differs from the ray tracer, and Figure 7 from Figure 8,
 /// as heat maps at the conclusion size: (file name, picture).
-pub fn heat_maps(plan: &Plan) -> Vec<(String, Frame)> {
+pub fn heat_maps(plan: &Plan, scene: &Scene) -> Vec<(String, Frame)> {
     let size = conclusion_size(plan);
-    let (mesh, camera, light) = (cornell_box(), camera_for(size), Light::handout());
+    let pose = pose_for(scene);
+    let (mesh, camera, light) = (&scene.mesh, camera_for(size, &pose), light_for(&pose));
     let uniforms = Uniforms { light };
-    let reference = raytrace(&mesh, &camera, &light, &Options::default()).frame;
+    let reference = raytrace(mesh, &camera, &light, &Options::default()).frame;
     let mut out = Vec::new();
     let lit = measured_figures()
         .into_iter()
         .filter(|f| f.stage.interpolates());
     for figure in lit {
-        let frame = figure.render(&mesh, &camera, &uniforms);
+        let frame = figure.render(mesh, &camera, &uniforms);
         let title = format!("{} against the ray tracer, {size}x{size}", figure.label());
         let name = format!("heat-{}", figure.default_file());
         out.extend(heat_map_picture(&frame, &reference, &title).map(|p| (name, p)));
     }
-    let seven = Figure::of(StageName::PixelLight).render(&mesh, &camera, &uniforms);
+    let seven = Figure::of(StageName::PixelLight).render(mesh, &camera, &uniforms);
     let eight = Figure::with_interpolation(StageName::PixelLight, Some(true))
-        .render(&mesh, &camera, &uniforms);
+        .render(mesh, &camera, &uniforms);
     let title = "Figure 7 against Figure 8: what perspective correction changes";
     out.extend(
         heat_map_picture(&seven, &eight, title).map(|p| ("heat-fig7-vs-fig8.png".into(), p)),

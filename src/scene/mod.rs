@@ -87,3 +87,42 @@ pub fn bounding_sphere(mesh: &Mesh) -> (Vec3, f32) {
         .fold(0.0, f32::max);
     (centre, radius)
 }
+
+/// Where the camera and the light go when the command line does not say.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Pose {
+    pub camera: Vec3,
+    pub light: Vec3,
+    pub light_power: f32,
+}
+
+/// The handout's pose: camera (0, 0, -3.001), light (0, -0.5, -0.7), power 1.1.
+pub const HANDOUT_POSE: Pose = Pose {
+    camera: Vec3::new(0.0, 0.0, -3.001),
+    light: Vec3::new(0.0, -0.5, -0.7),
+    light_power: 1.1,
+};
+
+/// The pose that frames `scene` for a camera looking along `forward` with focal
+/// length `focal` on a `width` x `height` image. The box keeps the handout's.
+/// Another scene's bounding sphere fills 90 % of the image's shorter side; the
+/// light sits where the box's sits relative to the box, scaled with the scene, and
+/// its power grows with the size squared (eq. 10 falls off as 1/r²), so a model in
+/// millimetres is lit as one in metres.
+pub fn framed_pose(scene: &Scene, forward: Vec3, focal: f32, width: u32, height: u32) -> Pose {
+    if scene.is_box {
+        return HANDOUT_POSE;
+    }
+    let (box_centre, box_radius) = bounding_sphere(&cornell_box());
+    let (centre, radius) = bounding_sphere(&scene.mesh);
+    let radius = if radius > 0.0 { radius } else { 1.0 };
+    let half = width.min(height) as f32 / 2.0;
+    let angle = (half / focal).atan();
+    let distance = radius / (0.9 * angle.sin()).min(1.0);
+    let scale = radius / box_radius;
+    Pose {
+        camera: centre - forward.normalize_or(Vec3::Z) * distance,
+        light: centre + (HANDOUT_POSE.light - box_centre) * scale,
+        light_power: HANDOUT_POSE.light_power * scale * scale,
+    }
+}
