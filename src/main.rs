@@ -390,6 +390,22 @@ enum Explain {
     ///
     /// Example: `rasterlab explain edge 0.5,0.5 6.5,0.5 0.5,6.5`.
     Edge(ExplainEdge),
+    /// Two triangles sharing an edge, (A, B, C) and (A, C, D), drawn by the rows
+    /// rasterizer and by the edge rasterizer: the pixels drawn twice.
+    ///
+    /// Example: `rasterlab explain shared 1.3,1.2 12.6,2.4 11.2,11.7 2.1,10.4`.
+    Shared(ExplainShared),
+}
+
+#[derive(Args, Debug)]
+struct ExplainShared {
+    /// The quad's corners A, B, C, D as X,Y image positions; fractions allowed.
+    #[arg(value_name = "X,Y", num_args = 4, required = true, value_parser = parse::point_f32)]
+    corners: Vec<(f32, f32)>,
+    /// Output image (.png or .bmp, or - for standard output) [default: explain-shared.png]
+    #[arg(short, long, value_name = "FILE", value_parser = parse::image_path,
+          allow_hyphen_values = true)]
+    out: Option<PathBuf>,
 }
 
 #[derive(Args, Debug)]
@@ -599,6 +615,10 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 Explain::Edge(a) => {
                     let c = [a.corners[0], a.corners[1], a.corners[2]];
                     (explain::explain_edge(&c), &a.out, "explain-edge.png")
+                }
+                Explain::Shared(a) => {
+                    let c = [a.corners[0], a.corners[1], a.corners[2], a.corners[3]];
+                    (explain::explain_shared(&c), &a.out, "explain-shared.png")
                 }
             };
             let out = out.clone().unwrap_or_else(|| PathBuf::from(default));

@@ -95,6 +95,42 @@ fn committed_pictures_match_the_code() {
         &steps.join("explain-edge.png"),
         &explain_edge(&[(0.5, 0.5), (6.5, 0.5), (0.5, 6.5)]).unwrap(),
     );
+    // rasterlab explain shared 1.3,1.2 12.6,2.4 11.2,11.7 2.1,10.4
+    assert_picture(
+        &steps.join("explain-shared.png"),
+        &rasterlab::app::explain::explain_shared(&[
+            (1.3, 1.2),
+            (12.6, 2.4),
+            (11.2, 11.7),
+            (2.1, 10.4),
+        ])
+        .unwrap(),
+    );
+    // rasterlab vertex-light|pixel-light --scene docs/models/sphere.obj --size 300x300
+    //   --focal 300 --light -1,-1.5,-2 --light-power 20
+    let sphere = rasterlab::scene::load_obj(&docs().join("models/sphere.obj")).unwrap();
+    let scene = rasterlab::scene::Scene {
+        name: "sphere".into(),
+        mesh: sphere,
+        is_box: false,
+    };
+    let pose = rasterlab::scene::framed_pose(&scene, glam::Vec3::Z, 300.0, 300, 300);
+    let settings = Settings {
+        width: 300,
+        height: 300,
+        focal: 300.0,
+        camera: pose.camera,
+        light: glam::Vec3::new(-1.0, -1.5, -2.0),
+        light_power: 20.0,
+        ..Settings::default()
+    };
+    for stage in [
+        rasterlab::StageName::VertexLight,
+        rasterlab::StageName::PixelLight,
+    ] {
+        let (frame, _) = app::render(Figure::of(stage), &scene.mesh, &settings, None);
+        assert_picture(&steps.join(format!("models-{}.png", stage.name())), &frame);
+    }
     // rasterlab depth --buffer
     let (depth, _) = app::render(
         Figure::of(rasterlab::StageName::Depth),

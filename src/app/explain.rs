@@ -400,3 +400,129 @@ mod tests {
         assert_eq!(centre(3, 3), EDGE_COLORS[2], "hypotenuse: left out");
     }
 }
+
+/// Two triangles sharing an edge, `(a, b, c)` and `(a, c, d)`, as each rasterizer
+/// covers them: the handout's rows (left) draw the pixels along the shared edge
+/// twice and place corners by truncation; the edge rasterizer (right) gives every
+/// pixel to exactly one triangle. Light: one triangle; darker: the other; red:
+/// both.
+pub fn explain_shared(corners: &[(f32, f32); 4]) -> Result<Frame, String> {
+    use crate::pipeline::clip::ScreenVertex;
+    use crate::pipeline::raster::{EdgeRaster, Rasterizer, RowRaster, Viewport};
+    let cells: Vec<(i32, i32)> = corners
+        .iter()
+        .map(|&(x, y)| (x.floor() as i32, y.floor() as i32))
+        .collect();
+    let grid = Grid::around(&cells)?;
+    let (ox, oy) = grid.min;
+    let viewport = Viewport {
+        half_width: 0,
+        half_height: 0,
+        centre: (0.0, 0.0),
+        bounds: Bounds {
+            x: ox..ox + grid.cells.0,
+            y: oy..oy + grid.cells.1,
+        },
+    };
+    let [a, b, c, d] = corners.map(|(x, y)| ScreenVertex {
+        x,
+        y,
+        zinv: 1.0,
+        varying: crate::pipeline::Nothing {},
+    });
+    let index = |x: i32, y: i32| ((y - oy) * grid.cells.0 + (x - ox)) as usize;
+    let cover = |edge: bool| {
+        let mut hits = vec![[0u8; 2]; (grid.cells.0 * grid.cells.1) as usize];
+        for (k, tri) in [[a, b, c], [a, c, d]].iter().enumerate() {
+            let mut plot = |p: Pixel<_>| hits[index(p.x, p.y)][k] += 1;
+            if edge {
+                EdgeRaster::polygon(&mut (), tri, &viewport, &mut plot);
+            } else {
+                RowRaster::polygon(&mut Rows::new(), tri, &viewport, &mut plot);
+            }
+        }
+        hits
+    };
+    let panel = |edge: bool| {
+        let hits = cover(edge);
+        let twice = hits.iter().filter(|h| h[0] > 0 && h[1] > 0).count();
+        let name = if edge {
+            "edge rasterizer"
+        } else {
+            "the handout's rows"
+        };
+        let text = vec![
+            format!("{name}:"),
+            format!("{} pixels drawn twice", twice),
+            "light, dark: one triangle each".into(),
+            "red: drawn by both".into(),
+        ];
+        let mut c = canvas_for(&grid, name, &text);
+        for y in oy..oy + grid.cells.1 {
+            for x in ox..ox + grid.cells.0 {
+                let h = hits[index(x, y)];
+                let color = match (h[0] > 0, h[1] > 0) {
+                    (true, true) => 0x00e3_1a1c,
+                    (true, false) => FILLED,
+                    (false, true) => ROW_END,
+                    (false, false) => continue,
+                };
+                grid.fill(&mut c, x, y, color);
+            }
+        }
+        grid.draw_lines(&mut c);
+        let at = |(x, y): (f32, f32)| {
+            let (cx, cy) = grid.corner(ox, oy);
+            (
+                cx + ((x - ox as f32) * grid.cell as f32).round() as i32,
+                cy + ((y - oy as f32) * grid.cell as f32).round() as i32,
+            )
+        };
+        for (p, q) in [(0, 1), (1, 2), (2, 3), (3, 0), (0, 2)] {
+            c.line(at(corners[p]), at(corners[q]), EXACT, 2);
+        }
+        c.frame
+    };
+    let panels = [false, true].map(|edge| super::overview::Panel {
+        frame: panel(edge),
+        label: String::new(),
+    });
+    super::overview::grid(&panels).ok_or_else(|| "panels of different sizes".to_string())
+}
+
+/// How many pixels of `mesh` two triangles of one flat surface (same normal and
+/// colour, as a wall's two halves) both draw: the rows rasterizer's double
+/// drawing along shared edges, which the edge rasterizer's top-left rule removes.
+pub fn pixels_drawn_twice(
+    mesh: &crate::pipeline::Mesh,
+    settings: &super::Settings,
+    raster: crate::measure::figure::Raster,
+) -> usize {
+    use crate::measure::figure::{Figure, StageName};
+    use std::collections::HashMap;
+    let mut surfaces: HashMap<_, Vec<usize>> = HashMap::new();
+    for (i, t) in mesh.triangles().enumerate() {
+        let bits = |v: glam::Vec3| v.to_array().map(|c| (c + 0.0).to_bits());
+        surfaces
+            .entry((bits(t.normal), bits(t.color)))
+            .or_default()
+            .push(i);
+    }
+    let figure = Figure::of(StageName::Filled).with_raster(raster);
+    let mut twice = 0;
+    for faces in surfaces.values() {
+        let mut hits = vec![0u8; (settings.width * settings.height) as usize];
+        for &f in faces {
+            let one = crate::pipeline::Mesh {
+                faces: vec![mesh.faces[f]],
+                ..mesh.clone()
+            };
+            let frame = super::render(figure, &one, settings, None).0;
+            for (h, &c) in hits.iter_mut().zip(&frame.color) {
+                *h += (c != 0) as u8;
+            }
+        }
+        twice += hits.iter().filter(|&&h| h >= 2).count();
+    }
+    twice
+}

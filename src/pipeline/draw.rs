@@ -52,7 +52,8 @@ pub struct Stats {
     pub outside: u64,
     /// Cut by the near plane or the guard band.
     pub clipped: u64,
-    /// Handed to the rasterizer.
+    /// Handed to the rasterizer (for points and lines: every triangle not culled;
+    /// their corners and edges are cut one by one).
     pub drawn: u64,
     /// Pixels that passed the depth test (or had none) and were written.
     pub pixels_written: u64,
@@ -176,9 +177,13 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Pipeline<S, I, R> {
             });
             match S::PRIMITIVE {
                 Primitive::Points => {
+                    self.stats.drawn += 1;
                     self.draw_points(&screen, &corners, &surface, uniforms, target)
                 }
-                Primitive::Lines => self.draw_edges(&screen, &corners, &surface, uniforms, target),
+                Primitive::Lines => {
+                    self.stats.drawn += 1;
+                    self.draw_edges(&screen, &corners, &surface, uniforms, target)
+                }
                 Primitive::Polygons => {
                     self.draw_polygon(&screen, &corners, &surface, uniforms, target)
                 }
