@@ -348,59 +348,6 @@ pub fn explain_edge(corners: &[(f32, f32); 3]) -> Result<Frame, String> {
     Ok(c.frame)
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_handouts_line_is_four_numbered_pixels() {
-        let f = explain_line((4, 2), (1, 8)).unwrap();
-        // Grid from (0, 1) to (5, 9), 9 cells high: 640 / 9 = 71, clamped to 48.
-        let grid = Grid::around(&[(4, 2), (1, 8)]).unwrap();
-        assert_eq!(grid.cell, 48);
-        let filled = |x: i32, y: i32| {
-            let (cx, cy) = grid.corner(x, y);
-            f.color[((cy + 40) as u32 * f.width + (cx + 40) as u32) as usize] == FILLED
-        };
-        for (x, y) in [(4, 2), (3, 4), (2, 6), (1, 8)] {
-            assert!(filled(x, y), "({x}, {y})");
-        }
-        assert!(!filled(4, 3) && !filled(1, 7));
-    }
-
-    #[test]
-    fn rows_mark_every_row_end_and_refuse_huge_polygons() {
-        let f = explain_rows(&[(10, 5), (5, 10), (15, 15)]).unwrap();
-        let grid = Grid::around(&[(10, 5), (5, 10), (15, 15)]).unwrap();
-        let at = |x: i32, y: i32| {
-            let (cx, cy) = grid.corner(x, y);
-            f.color[((cy + 2) as u32 * f.width + (cx + 2) as u32) as usize]
-        };
-        // The handout's first rows: (10,5)-(10,5), (9,6)-(10,6); the last (15,15).
-        assert_eq!(at(10, 5), ROW_END);
-        assert_eq!(at(9, 6), ROW_END);
-        assert_eq!(at(10, 6), ROW_END);
-        assert_eq!(at(11, 6), WHITE);
-        assert_eq!(at(15, 15), ROW_END);
-        assert_eq!(at(4, 10), WHITE, "outside the polygon");
-        assert!(explain_rows(&[(0, 0), (100, 0), (0, 5)]).is_err());
-    }
-
-    #[test]
-    fn edge_marks_centres_on_edges() {
-        // A right triangle whose legs run through pixel centres (x = 0.5, y = 0.5):
-        // the centres on the left leg are taken, those on the hypotenuse are not.
-        let f = explain_edge(&[(0.5, 0.5), (6.5, 0.5), (0.5, 6.5)]).unwrap();
-        let grid = Grid::around(&[(0, 0), (6, 0), (0, 6)]).unwrap();
-        let centre = |x: i32, y: i32| {
-            let (cx, cy) = grid.centre(x, y);
-            f.color[(cy as u32 * f.width + cx as u32) as usize]
-        };
-        assert_eq!(centre(0, 3), EDGE_COLORS[0], "left leg: taken");
-        assert_eq!(centre(3, 3), EDGE_COLORS[2], "hypotenuse: left out");
-    }
-}
-
 /// Two triangles sharing an edge, `(a, b, c)` and `(a, c, d)`, as each rasterizer
 /// covers them: the handout's rows (left) draw the pixels along the shared edge
 /// twice and place corners by truncation; the edge rasterizer (right) gives every
@@ -525,4 +472,57 @@ pub fn pixels_drawn_twice(
         twice += hits.iter().filter(|&&h| h >= 2).count();
     }
     twice
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_handouts_line_is_four_numbered_pixels() {
+        let f = explain_line((4, 2), (1, 8)).unwrap();
+        // Grid from (0, 1) to (5, 9), 9 cells high: 640 / 9 = 71, clamped to 48.
+        let grid = Grid::around(&[(4, 2), (1, 8)]).unwrap();
+        assert_eq!(grid.cell, 48);
+        let filled = |x: i32, y: i32| {
+            let (cx, cy) = grid.corner(x, y);
+            f.color[((cy + 40) as u32 * f.width + (cx + 40) as u32) as usize] == FILLED
+        };
+        for (x, y) in [(4, 2), (3, 4), (2, 6), (1, 8)] {
+            assert!(filled(x, y), "({x}, {y})");
+        }
+        assert!(!filled(4, 3) && !filled(1, 7));
+    }
+
+    #[test]
+    fn rows_mark_every_row_end_and_refuse_huge_polygons() {
+        let f = explain_rows(&[(10, 5), (5, 10), (15, 15)]).unwrap();
+        let grid = Grid::around(&[(10, 5), (5, 10), (15, 15)]).unwrap();
+        let at = |x: i32, y: i32| {
+            let (cx, cy) = grid.corner(x, y);
+            f.color[((cy + 2) as u32 * f.width + (cx + 2) as u32) as usize]
+        };
+        // The handout's first rows: (10,5)-(10,5), (9,6)-(10,6); the last (15,15).
+        assert_eq!(at(10, 5), ROW_END);
+        assert_eq!(at(9, 6), ROW_END);
+        assert_eq!(at(10, 6), ROW_END);
+        assert_eq!(at(11, 6), WHITE);
+        assert_eq!(at(15, 15), ROW_END);
+        assert_eq!(at(4, 10), WHITE, "outside the polygon");
+        assert!(explain_rows(&[(0, 0), (100, 0), (0, 5)]).is_err());
+    }
+
+    #[test]
+    fn edge_marks_centres_on_edges() {
+        // A right triangle whose legs run through pixel centres (x = 0.5, y = 0.5):
+        // the centres on the left leg are taken, those on the hypotenuse are not.
+        let f = explain_edge(&[(0.5, 0.5), (6.5, 0.5), (0.5, 6.5)]).unwrap();
+        let grid = Grid::around(&[(0, 0), (6, 0), (0, 6)]).unwrap();
+        let centre = |x: i32, y: i32| {
+            let (cx, cy) = grid.centre(x, y);
+            f.color[(cy as u32 * f.width + cx as u32) as usize]
+        };
+        assert_eq!(centre(0, 3), EDGE_COLORS[0], "left leg: taken");
+        assert_eq!(centre(3, 3), EDGE_COLORS[2], "hypotenuse: left out");
+    }
 }
