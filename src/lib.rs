@@ -5,7 +5,10 @@
 //! - [`pipeline`]: the rasterizer of the handout's section 6 for any mesh (camera,
 //!   clipping, rasterizers, interpolation, stages, light, render targets). It
 //!   depends on glam alone.
-//! - [`scene`]: what builds meshes (the Cornell box).
+//! - [`scene`]: what builds meshes: the handout's Cornell box (and its
+//!   subdivisions), procedural scenes (a sphere, a floor grid) and OBJ models read
+//!   with tobj, chosen by a `--scene` spec; it also frames a scene other than the
+//!   box for the camera and the light.
 //! - [`measure`]: the ray-traced reference, error metrics, timing, `rasterlab
 //!   report` and `rasterlab stress`.
 //! - [`app`]: the command line's work, image files, Figure 1 and the viewer.

@@ -305,6 +305,13 @@ struct ReportArgs {
     /// What to measure: cornell (the default), cornell:K, sphere:N, grid:N or PATH.obj.
     #[arg(long, value_name = "SCENE", default_value = "cornell")]
     scene: String,
+    /// Light position [default: the handout's for the box; framed for other scenes,
+    /// which puts it inside a closed model: give one outside].
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse::vec3, allow_hyphen_values = true)]
+    light: Option<Vec3>,
+    /// Light power P of eq. 10 [default: 1.1 for the box; scaled for other scenes].
+    #[arg(long, value_name = "P", value_parser = parse::finite, allow_hyphen_values = true)]
+    light_power: Option<f32>,
     /// Folder for report.md, report.csv and error-vs-time.png (created if missing).
     #[arg(long, value_name = "DIR", default_value = "report")]
     out: PathBuf,
@@ -547,7 +554,10 @@ fn run(cli: Cli) -> Result<(), Failure> {
         }
         Command::Report(a) => {
             let scene = load_scene(&a.scene)?;
-            let written = app::report(&a.out, a.quick, &scene, |line| eprintln!("{line}"))
+            let mut pose = rasterlab::measure::report::pose_for(&scene);
+            pose.light = a.light.unwrap_or(pose.light);
+            pose.light_power = a.light_power.unwrap_or(pose.light_power);
+            let written = app::report(&a.out, a.quick, &scene, &pose, |line| eprintln!("{line}"))
                 .map_err(|e| e.to_string())?;
             for path in written {
                 eprintln!("wrote {}", path.display());

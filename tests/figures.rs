@@ -144,10 +144,9 @@ fn committed_pictures_match_the_code() {
     );
     // rasterlab report: the heat maps (deterministic, unlike its times)
     let plan = rasterlab::measure::report::Plan::full();
-    for (name, picture) in rasterlab::measure::report::heat_maps(
-        &plan,
-        &rasterlab::scene::parse_scene("cornell").unwrap(),
-    ) {
+    let cornell = rasterlab::scene::parse_scene("cornell").unwrap();
+    let pose = rasterlab::measure::report::pose_for(&cornell);
+    for (name, picture) in rasterlab::measure::report::heat_maps(&plan, &cornell, &pose) {
         assert_picture(&docs().join("report").join(name), &picture);
     }
 }

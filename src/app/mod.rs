@@ -357,6 +357,7 @@ pub fn report(
     dir: &Path,
     quick: bool,
     scene: &Scene,
+    pose: &crate::scene::Pose,
     progress: impl FnMut(&str),
 ) -> Result<Vec<PathBuf>, WriteError> {
     let plan = if quick {
@@ -373,17 +374,17 @@ pub fn report(
     let probe = dir.join(format!(".rasterlab-write-check.{}", std::process::id()));
     std::fs::write(&probe, b"").map_err(fail)?;
     let _ = std::fs::remove_file(&probe);
-    let rows = report::measure_all(&plan, scene, progress);
+    let rows = report::measure_all(&plan, scene, pose, progress);
     let md = dir.join("report.md");
     let csv = dir.join("report.csv");
     let png = dir.join("error-vs-time.png");
-    let mut text = report::markdown(&rows, &plan, &machine());
+    let mut text = report::markdown(&rows, &plan, &machine(), &scene.name);
     text.push_str("\n![Error against time](error-vs-time.png)\n");
     write_text(&md, &text)?;
     write_text(&csv, &report::csv(&rows))?;
     write_png(&report::plot(&rows, &plan), &png)?;
     let mut written = vec![md, csv, png];
-    for (name, picture) in report::heat_maps(&plan, scene) {
+    for (name, picture) in report::heat_maps(&plan, scene, pose) {
         let path = dir.join(name);
         write_png(&picture, &path)?;
         written.push(path);

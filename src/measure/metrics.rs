@@ -77,7 +77,10 @@ pub fn interior_mask(
     margin: u32,
 ) -> Vec<bool> {
     // Two triangles of one wall are one surface: name surfaces by their first
-    // triangle with that normal and colour (a map, so this stays linear).
+    // triangle with that normal and colour (a map, so this stays linear). A mesh
+    // with vertex normals is smooth across its triangles: there colour alone names
+    // a surface.
+    let smooth = !mesh.normals.is_empty();
     let mut first = std::collections::HashMap::new();
     let surface: Vec<usize> = mesh
         .triangles()
@@ -85,7 +88,8 @@ pub fn interior_mask(
         .map(|(i, t)| {
             // `+ 0.0` makes -0 and 0 one key, as `==` would.
             let bits = |v: glam::Vec3| v.to_array().map(|c| (c + 0.0).to_bits());
-            let key = (bits(t.normal), bits(t.color));
+            let normal = if smooth { glam::Vec3::ZERO } else { t.normal };
+            let key = (bits(normal), bits(t.color));
             *first.entry(key).or_insert(i)
         })
         .collect();
