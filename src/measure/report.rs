@@ -448,8 +448,8 @@ pub fn markdown(rows: &[Row], plan: &Plan, machine: &str, scene: &str) -> String
     let _ = writeln!(
         out,
         "\n## By mesh density at {s}x{s} (every triangle split into k x k)\n\n\
-         The ray tracer is timed on the plain box only; its cost grows with the triangle \
-         count (no acceleration structure), so `x faster` compares with that.\n\n{header}",
+         The ray tracer is timed on the plain box only, so `x faster` compares with \
+         that.\n\n{header}",
         s = plan.k_size
     );
     for r in rows
