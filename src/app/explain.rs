@@ -12,10 +12,13 @@
 //!   exactly on an edge, in or out by the top-left rule.
 
 use crate::measure::plot::{Canvas, Rgb, BLACK, DARK, GREY};
+use crate::pipeline::clip::ScreenVertex;
 use crate::pipeline::interpolate::{line_pixels, Pixel, Steps};
+use crate::pipeline::raster::edge::SUBPIXEL;
 use crate::pipeline::raster::rows::{compute_polygon_rows, draw_polygon_rows, Rows};
-use crate::pipeline::raster::Bounds;
+use crate::pipeline::raster::{Bounds, EdgeRaster, Rasterizer, RowRaster, Viewport};
 use crate::pipeline::Frame;
+use crate::pipeline::Nothing;
 
 /// The largest grid `explain` draws, in pixels of the explained image per side.
 pub const MAX_EXTENT: i32 = 64;
@@ -235,20 +238,15 @@ pub fn explain_rows(vertices: &[(i32, i32)]) -> Result<Frame, String> {
     Ok(c.frame)
 }
 
-/// `explain edge A B C`: the exact rasterizer (`--raster edge`) on one triangle
-/// whose corners are image positions in pixels (fractions allowed): the pixels it
-/// covers (light), every pixel centre (small dots), and the centres exactly on an
-/// edge, taken by the top-left rule (green) or left to the neighbour (red).
-pub fn explain_edge(corners: &[(f32, f32); 3]) -> Result<Frame, String> {
-    use crate::pipeline::clip::ScreenVertex;
-    use crate::pipeline::raster::edge::SUBPIXEL;
-    use crate::pipeline::raster::{EdgeRaster, Rasterizer, Viewport};
+/// The grid around points given in image pixels, fractions allowed, with a
+/// viewport that puts image position (x, y) at (x, y): what `explain edge` and
+/// `explain shared` rasterize into.
+fn fractional_grid(corners: &[(f32, f32)]) -> Result<(Grid, Viewport), String> {
     let cells: Vec<(i32, i32)> = corners
         .iter()
         .map(|&(x, y)| (x.floor() as i32, y.floor() as i32))
         .collect();
     let grid = Grid::around(&cells)?;
-    // The grid's pixels as an image whose top-left pixel is (min.0, min.1).
     let (ox, oy) = grid.min;
     let viewport = Viewport {
         half_width: 0,
@@ -259,12 +257,38 @@ pub fn explain_edge(corners: &[(f32, f32); 3]) -> Result<Frame, String> {
             y: oy..oy + grid.cells.1,
         },
     };
-    let vertices = corners.map(|(x, y)| ScreenVertex {
+    Ok((grid, viewport))
+}
+
+/// A corner at image position (x, y) as the rasterizers take it.
+fn screen_vertex((x, y): (f32, f32)) -> ScreenVertex<Nothing> {
+    ScreenVertex {
         x,
         y,
         zinv: 1.0,
-        varying: crate::pipeline::Nothing {},
-    });
+        varying: Nothing {},
+    }
+}
+
+impl Grid {
+    /// Where image position (x, y), fractions allowed, falls on the canvas.
+    fn exact(&self, (x, y): (f32, f32)) -> (i32, i32) {
+        let (cx, cy) = self.corner(self.min.0, self.min.1);
+        (
+            cx + ((x - self.min.0 as f32) * self.cell as f32).round() as i32,
+            cy + ((y - self.min.1 as f32) * self.cell as f32).round() as i32,
+        )
+    }
+}
+
+/// `explain edge A B C`: the exact rasterizer (`--raster edge`) on one triangle
+/// whose corners are image positions in pixels (fractions allowed): the pixels it
+/// covers (light), every pixel centre (small dots), and the centres exactly on an
+/// edge, taken by the top-left rule (green) or left to the neighbour (red).
+pub fn explain_edge(corners: &[(f32, f32); 3]) -> Result<Frame, String> {
+    let (grid, viewport) = fractional_grid(corners)?;
+    let (ox, oy) = grid.min;
+    let vertices = corners.map(screen_vertex);
     let mut covered = Vec::new();
     EdgeRaster::polygon(&mut (), &vertices, &viewport, |p| covered.push((p.x, p.y)));
     // Centres exactly on an edge, in the same fixed point the rasterizer uses.
@@ -314,13 +338,7 @@ pub fn explain_edge(corners: &[(f32, f32); 3]) -> Result<Frame, String> {
         grid.fill(&mut c, x, y, FILLED);
     }
     grid.draw_lines(&mut c);
-    let at = |(x, y): (f32, f32)| {
-        let (cx, cy) = grid.corner(ox, oy);
-        (
-            cx + ((x - ox as f32) * grid.cell as f32).round() as i32,
-            cy + ((y - oy as f32) * grid.cell as f32).round() as i32,
-        )
-    };
+    let at = |p| grid.exact(p);
     for k in 0..3 {
         c.line(at(corners[k]), at(corners[(k + 1) % 3]), EXACT, 2);
     }
@@ -354,29 +372,9 @@ pub fn explain_edge(corners: &[(f32, f32); 3]) -> Result<Frame, String> {
 /// pixel to exactly one triangle. Light: one triangle; darker: the other; red:
 /// both.
 pub fn explain_shared(corners: &[(f32, f32); 4]) -> Result<Frame, String> {
-    use crate::pipeline::clip::ScreenVertex;
-    use crate::pipeline::raster::{EdgeRaster, Rasterizer, RowRaster, Viewport};
-    let cells: Vec<(i32, i32)> = corners
-        .iter()
-        .map(|&(x, y)| (x.floor() as i32, y.floor() as i32))
-        .collect();
-    let grid = Grid::around(&cells)?;
+    let (grid, viewport) = fractional_grid(corners)?;
     let (ox, oy) = grid.min;
-    let viewport = Viewport {
-        half_width: 0,
-        half_height: 0,
-        centre: (0.0, 0.0),
-        bounds: Bounds {
-            x: ox..ox + grid.cells.0,
-            y: oy..oy + grid.cells.1,
-        },
-    };
-    let [a, b, c, d] = corners.map(|(x, y)| ScreenVertex {
-        x,
-        y,
-        zinv: 1.0,
-        varying: crate::pipeline::Nothing {},
-    });
+    let [a, b, c, d] = corners.map(screen_vertex);
     let index = |x: i32, y: i32| ((y - oy) * grid.cells.0 + (x - ox)) as usize;
     let cover = |edge: bool| {
         let mut hits = vec![[0u8; 2]; (grid.cells.0 * grid.cells.1) as usize];
@@ -418,13 +416,7 @@ pub fn explain_shared(corners: &[(f32, f32); 4]) -> Result<Frame, String> {
             }
         }
         grid.draw_lines(&mut c);
-        let at = |(x, y): (f32, f32)| {
-            let (cx, cy) = grid.corner(ox, oy);
-            (
-                cx + ((x - ox as f32) * grid.cell as f32).round() as i32,
-                cy + ((y - oy as f32) * grid.cell as f32).round() as i32,
-            )
-        };
+        let at = |p| grid.exact(p);
         for (p, q) in [(0, 1), (1, 2), (2, 3), (3, 0), (0, 2)] {
             c.line(at(corners[p]), at(corners[q]), EXACT, 2);
         }
