@@ -125,6 +125,11 @@ struct SceneArgs {
     /// the camera is projected through it and drawn wrong (but never out of bounds).
     #[arg(long)]
     no_clip: bool,
+    /// Threads drawing bands of the image; the image is the same for any number
+    /// [default: all cores].
+    #[arg(long, value_name = "N", value_parser = |s: &str| parse::whole(s, 1, 256),
+          allow_hyphen_values = true)]
+    threads: Option<u64>,
 }
 
 impl SceneArgs {
@@ -142,6 +147,9 @@ impl SceneArgs {
             indirect: self.indirect,
             near: self.near,
             clip: !self.no_clip,
+            threads: self
+                .threads
+                .map_or_else(app::parallel::cores, |n| n as usize),
             ..Settings::default()
         };
         let forward = settings.camera().axes()[2];
@@ -672,7 +680,7 @@ fn refuse_unused_options(command: &str, m: &ArgMatches) -> Result<(), String> {
         ));
     }
     if command == "raytrace" {
-        for id in ["raster", "cull", "stats", "buffer"] {
+        for id in ["raster", "cull", "stats", "buffer", "threads"] {
             if given(id) {
                 return Err(format!(
                     "--{id} does nothing for raytrace: it casts rays, it does not rasterize"

@@ -6,6 +6,7 @@ pub mod controls;
 pub mod explain;
 pub mod image_io;
 pub mod overview;
+pub mod parallel;
 pub mod parse;
 pub mod viewer;
 
@@ -46,6 +47,9 @@ pub struct Settings {
     /// Clip at the near plane and the screen's guard band; false draws as the
     /// handout does (`--no-clip`).
     pub clip: bool,
+    /// Threads that draw bands of the image (`--threads`); the image is the same
+    /// for any number.
+    pub threads: usize,
 }
 
 impl Default for Settings {
@@ -64,6 +68,7 @@ impl Default for Settings {
             indirect: light.indirect.x,
             near: DEFAULT_NEAR,
             clip: true,
+            threads: 1,
         }
     }
 }
@@ -116,7 +121,11 @@ pub fn render_with_stats(
     runs: Option<usize>,
 ) -> (Frame, Option<Timing>, Stats) {
     let (camera, uniforms) = (settings.camera(), settings.uniforms());
-    let mut pipeline = figure.pipeline_for(mesh);
+    let mut pipeline = match parallel::Parallel::new(figure, mesh, settings.threads) {
+        Ok(p) => p,
+        // No threads to be had: one band, on this thread.
+        Err(_) => parallel::Parallel::new(figure, mesh, 1).expect("one band needs no thread"),
+    };
     let mut frame = Frame::default();
     pipeline.render(mesh, &camera, &uniforms, &mut frame);
     let stats = pipeline.stats();

@@ -5,9 +5,10 @@
 
 use super::controls::{self, action, pressed, Action, Controls, Key, MouseLook};
 use super::image_io::write_png;
+use super::parallel::Parallel;
 use super::Settings;
 use crate::measure::figure::{Figure, Raster, StageName};
-use crate::pipeline::{Frame, Render};
+use crate::pipeline::Frame;
 use std::collections::VecDeque;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -200,7 +201,8 @@ pub fn run(options: Options) -> Result<Summary, String> {
     let controls = Controls::default();
     let mut settings = options.settings;
     let mut view = options.view;
-    let mut pipeline: Box<dyn Render> = view.pipeline_for(&scene);
+    let threads = settings.threads;
+    let mut pipeline = Parallel::new(view, &scene, threads)?;
     let mut frame = Frame::default();
     let mut held_before: Vec<Key> = Vec::new();
     let mut mouse = MouseLook::default();
@@ -240,15 +242,15 @@ pub fn run(options: Options) -> Result<Summary, String> {
                 Some(Action::Show(v)) => {
                     // A figure key keeps the rasterizer and culling chosen.
                     view = v.with_raster(view.raster).with_cull(view.cull);
-                    pipeline = view.pipeline_for(&scene);
+                    pipeline = Parallel::new(view, &scene, threads)?;
                 }
                 Some(Action::TogglePerspective) => {
                     view = controls::toggle_perspective(view);
-                    pipeline = view.pipeline_for(&scene);
+                    pipeline = Parallel::new(view, &scene, threads)?;
                 }
                 Some(Action::ToggleRaster) => {
                     view = controls::toggle_raster(view);
-                    pipeline = view.pipeline_for(&scene);
+                    pipeline = Parallel::new(view, &scene, threads)?;
                 }
                 Some(Action::Save) => save(&frame, &free_capture_path(view))?,
                 Some(Action::Help) => eprintln!("{}", controls::HELP),

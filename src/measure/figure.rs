@@ -112,8 +112,8 @@ struct NewPipeline {
 }
 
 impl WithStage for NewPipeline {
-    type Output = Box<dyn Render>;
-    fn with<S: Stage, I: Interpolation, R: Rasterizer>(self) -> Box<dyn Render> {
+    type Output = Box<dyn Render + Send>;
+    fn with<S: Stage, I: Interpolation, R: Rasterizer>(self) -> Box<dyn Render + Send> {
         let mut pipeline = Pipeline::<S, I, R>::new();
         pipeline.cull = self.cull;
         Box::new(pipeline)
@@ -246,7 +246,7 @@ impl Figure {
 
     /// The pipeline that draws this figure of `mesh`: the stage types fit the
     /// mesh's attributes (smooth light where it has vertex normals).
-    pub fn pipeline_for(self, mesh: &Mesh) -> Box<dyn Render> {
+    pub fn pipeline_for(self, mesh: &Mesh) -> Box<dyn Render + Send> {
         self.with_stage(!mesh.normals.is_empty(), NewPipeline { cull: self.cull })
     }
 

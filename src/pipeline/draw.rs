@@ -523,12 +523,19 @@ pub trait Render {
     /// What the last frame did.
     fn stats(&self) -> Stats;
 
+    /// Whether the stage tests depth, so its target needs a depth buffer.
+    fn depth_test(&self) -> bool;
+
     fn set_cull(&mut self, cull: Cull);
 }
 
 impl<S: Stage, I: Interpolation, R: Rasterizer> Render for Pipeline<S, I, R> {
     fn stats(&self) -> Stats {
         self.stats
+    }
+
+    fn depth_test(&self) -> bool {
+        S::DEPTH_TEST
     }
 
     fn set_cull(&mut self, cull: Cull) {

@@ -14,6 +14,7 @@ use std::ops::{Add, Div, Mul, Sub};
 /// such type (f32, glam's vectors, the stages' structs).
 pub trait Varying:
     Copy
+    + Send
     + Default
     + Add<Output = Self>
     + Sub<Output = Self>
@@ -24,6 +25,7 @@ pub trait Varying:
 
 impl<T> Varying for T where
     T: Copy
+        + Send
         + Default
         + Add<Output = T>
         + Sub<Output = T>
@@ -227,7 +229,7 @@ pub fn line_pixels<V>(a: &Pixel<V>, b: &Pixel<V>) -> usize {
 /// way carries q itself: linear on the screen, as section 6.1 interpolates the
 /// illumination and as Figure 8 shows the mistake for the position. 1/z itself is
 /// carried as it is either way, so depth and the visible surfaces do not change.
-pub trait Interpolation: Copy + Default + 'static {
+pub trait Interpolation: Copy + Default + Send + 'static {
     /// True when interpolation is perspective-correct.
     const PERSPECTIVE_CORRECT: bool;
     /// What is carried for a per-pixel struct `q` at a vertex whose 1/z is `zinv`.

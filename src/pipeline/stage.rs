@@ -44,7 +44,7 @@ pub struct Surface {
 }
 
 /// One stage of the handout.
-pub trait Stage: 'static {
+pub trait Stage: Send + 'static {
     /// What the vertex shader computes and every pixel receives, interpolated.
     type Varying: Varying;
     const PRIMITIVE: Primitive;

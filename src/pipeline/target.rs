@@ -82,6 +82,30 @@ impl Frame {
         }
     }
 
+    /// The image as `n` render targets over consecutive bands of rows (at most `n`,
+    /// none empty), so each can be drawn on its own, on its own thread.
+    pub fn bands(&mut self, n: usize) -> Vec<Target<'_>> {
+        let (w, h) = (self.width, self.height);
+        let rows = h.div_ceil(n.max(1) as u32).max(1);
+        let chunk = (rows * w) as usize;
+        let has_depth = !self.depth.is_empty();
+        let mut depth = self.depth.chunks_mut(chunk.max(1));
+        self.color
+            .chunks_mut(chunk.max(1))
+            .enumerate()
+            .map(|(i, color)| {
+                let start = i as u32 * rows;
+                Target {
+                    width: w,
+                    height: h,
+                    rows: start..(start + rows).min(h),
+                    color: Some(color),
+                    depth: if has_depth { depth.next() } else { None },
+                }
+            })
+            .collect()
+    }
+
     /// The colour at (x, y) as 8-bit RGB.
     pub fn rgb(&self, x: u32, y: u32) -> [u8; 3] {
         unpack(self.color[(y * self.width + x) as usize])
@@ -148,6 +172,24 @@ mod tests {
         for v in values {
             assert_eq!(pack(Vec3::splat(v)), reference(v) * 0x01_01_01, "{v}");
         }
+    }
+
+    #[test]
+    fn bands_cover_the_image_once() {
+        let mut f = Frame::new(4, 10);
+        f.resize(4, 10, true);
+        let bands = f.bands(3);
+        let rows: Vec<_> = bands.iter().map(|b| b.rows.clone()).collect();
+        assert_eq!(rows, [0..4, 4..8, 8..10]);
+        let sizes: Vec<_> = bands
+            .iter()
+            .map(|b| b.color.as_ref().unwrap().len())
+            .collect();
+        assert_eq!(sizes, [16, 16, 8]);
+        assert!(bands
+            .iter()
+            .all(|b| b.depth.as_ref().unwrap().len() == b.color.as_ref().unwrap().len()));
+        assert_eq!(f.bands(40).len(), 10, "no empty band");
     }
 
     #[test]

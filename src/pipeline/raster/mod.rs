@@ -54,8 +54,8 @@ pub struct Viewport {
 
 /// A way of covering pixels. Its scratch buffers are kept by the caller from one
 /// primitive and one frame to the next.
-pub trait Rasterizer: Copy + Default + 'static {
-    type Scratch<V: Varying>: Default;
+pub trait Rasterizer: Copy + Default + Send + 'static {
+    type Scratch<V: Varying>: Default + Send;
 
     /// A projected point as one pixel, if it lands in the bounds.
     fn point<V: Varying>(p: ScreenVertex<V>, viewport: &Viewport, plot: impl FnMut(Pixel<V>));

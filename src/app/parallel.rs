@@ -1,0 +1,75 @@
+//! Drawing on several cores: the image split into bands of rows, one pipeline
+//! per band, each thread owning its pixels (no locks, no atomics per pixel). A
+//! band draws exactly its part of the whole image, so the result is the same, byte
+//! for byte, for any number of threads.
+
+use crate::measure::figure::Figure;
+use crate::pipeline::draw::Stats;
+use crate::pipeline::{Camera, Frame, Mesh, Render, Uniforms};
+
+/// A figure drawn in `threads` bands.
+pub struct Parallel {
+    pipelines: Vec<Box<dyn Render + Send>>,
+    pool: Option<rayon::ThreadPool>,
+    stats: Stats,
+}
+
+/// The number of cores, the default `--threads`.
+pub fn cores() -> usize {
+    std::thread::available_parallelism().map_or(1, |n| n.get())
+}
+
+impl Parallel {
+    /// `figure` of `mesh` on `threads` threads (1 draws on the calling thread).
+    pub fn new(figure: Figure, mesh: &Mesh, threads: usize) -> Result<Parallel, String> {
+        let threads = threads.max(1);
+        let pool = if threads > 1 {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .map_err(|e| format!("cannot start {threads} threads: {e}"))?;
+            Some(pool)
+        } else {
+            None
+        };
+        Ok(Parallel {
+            pipelines: (0..threads).map(|_| figure.pipeline_for(mesh)).collect(),
+            pool,
+            stats: Stats::default(),
+        })
+    }
+
+    /// Sizes `frame` to the camera's image and draws `mesh` into it, a band per
+    /// thread.
+    pub fn render(&mut self, mesh: &Mesh, camera: &Camera, uniforms: &Uniforms, frame: &mut Frame) {
+        let depth = self.pipelines[0].depth_test();
+        frame.resize(camera.width, camera.height, depth);
+        let bands = frame.bands(self.pipelines.len());
+        let work = self.pipelines.iter_mut().zip(bands);
+        match &self.pool {
+            None => {
+                for (pipeline, mut band) in work {
+                    pipeline.draw(mesh, camera, uniforms, &mut band);
+                }
+            }
+            Some(pool) => pool.scope(|s| {
+                for (pipeline, mut band) in work {
+                    s.spawn(move |_| pipeline.draw(mesh, camera, uniforms, &mut band));
+                }
+            }),
+        }
+        // Each band decides about every triangle alike; pixels are its own.
+        let mut stats = self.pipelines[0].stats();
+        for p in &self.pipelines[1..] {
+            let s = p.stats();
+            stats.pixels_written += s.pixels_written;
+            stats.depth_rejected += s.depth_rejected;
+        }
+        self.stats = stats;
+    }
+
+    /// What the last frame did, summed over the bands.
+    pub fn stats(&self) -> Stats {
+        self.stats
+    }
+}

@@ -1,0 +1,52 @@
+//! Drawing in bands on several threads gives the image of drawing on one, byte
+//! for byte, whatever the number of threads, the stage or the rasterizer.
+
+use rasterlab::app::parallel::Parallel;
+use rasterlab::app::Settings;
+use rasterlab::measure::figure::Raster;
+use rasterlab::scene::parse_scene;
+use rasterlab::{Figure, Frame};
+
+#[test]
+fn one_two_and_seven_threads_draw_the_same_bytes() {
+    let sphere = parse_scene("sphere:100000").unwrap();
+    let box_ = parse_scene("cornell").unwrap();
+    let settings = Settings {
+        width: 320,
+        height: 241, // bands of unequal height
+        focal: 320.0,
+        ..Settings::default()
+    };
+    for (scene, pose_camera) in [
+        (&box_, settings.camera),
+        (&sphere, glam::Vec3::new(0.0, 0.0, -2.5)),
+    ] {
+        let s = Settings {
+            camera: pose_camera,
+            ..settings
+        };
+        let (camera, uniforms) = (s.camera(), s.uniforms());
+        for figure in Figure::FIGURES {
+            for raster in [Raster::Rows, Raster::Edge] {
+                let figure = figure.with_raster(raster);
+                let draw = |threads: usize| {
+                    let mut p = Parallel::new(figure, &scene.mesh, threads).unwrap();
+                    let mut frame = Frame::default();
+                    p.render(&scene.mesh, &camera, &uniforms, &mut frame);
+                    (frame, p.stats())
+                };
+                let (one, stats) = draw(1);
+                for threads in [2, 7] {
+                    let (many, many_stats) = draw(threads);
+                    assert!(
+                        one.color == many.color,
+                        "{} {}: {threads} threads",
+                        scene.name,
+                        figure.label()
+                    );
+                    assert_eq!(stats, many_stats, "{} {}", scene.name, figure.label());
+                }
+            }
+        }
+    }
+}
