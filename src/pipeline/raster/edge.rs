@@ -127,23 +127,35 @@ fn triangle<V: Varying>(
         return;
     }
     let inv_area = 1.0 / area as f32;
+    let columns = last_i - first_i;
     for j in first_j..=last_j {
         let py = s * j + h;
         let px = s * first_i + h;
-        let mut e = edges.map(|(edge, from)| edge.at(from.x, from.y, px, py));
-        for i in first_i..=last_i {
-            if e.iter()
-                .zip(&edges)
-                .all(|(&v, (edge, _))| v - edge.bias >= 0)
-            {
-                let w = e.map(|v| v as f32 * inv_area);
-                plot(Pixel {
-                    x: i as i32,
-                    y: j as i32,
-                    zinv: a.zinv * w[0] + b.zinv * w[1] + c.zinv * w[2],
-                    varying: a.varying * w[0] + b.varying * w[1] + c.varying * w[2],
-                });
+        let e0 = edges.map(|(edge, from)| edge.at(from.x, from.y, px, py));
+        // The covered pixels of a row are one run: where each edge function, a
+        // line in i, is at least its bias. Solved exactly in integers per edge.
+        let (mut from, mut to) = (0, columns);
+        for (&v, (edge, _)) in e0.iter().zip(&edges) {
+            let (value, step) = (v - edge.bias, edge.dx * s);
+            match step.signum() {
+                1 => from = from.max(-value.div_euclid(step)),
+                -1 => to = to.min(value.div_euclid(-step)),
+                _ if value < 0 => to = -1,
+                _ => {}
             }
+        }
+        let mut e = e0.map(|v| v);
+        for (v, (edge, _)) in e.iter_mut().zip(&edges) {
+            *v += edge.dx * s * from.max(0);
+        }
+        for t in from.max(0)..=to {
+            let w = e.map(|v| v as f32 * inv_area);
+            plot(Pixel {
+                x: (first_i + t) as i32,
+                y: j as i32,
+                zinv: a.zinv * w[0] + b.zinv * w[1] + c.zinv * w[2],
+                varying: a.varying * w[0] + b.varying * w[1] + c.varying * w[2],
+            });
             for (v, (edge, _)) in e.iter_mut().zip(&edges) {
                 *v += edge.dx * s;
             }
