@@ -144,7 +144,7 @@ fn triangle<V: Varying>(
                 _ => {}
             }
         }
-        let mut e = e0.map(|v| v);
+        let mut e = e0;
         for (v, (edge, _)) in e.iter_mut().zip(&edges) {
             *v += edge.dx * s * from.max(0);
         }
