@@ -121,11 +121,10 @@ pub fn render_with_stats(
     runs: Option<usize>,
 ) -> (Frame, Option<Timing>, Stats) {
     let (camera, uniforms) = (settings.camera(), settings.uniforms());
-    let mut pipeline = match parallel::Parallel::new(figure, mesh, settings.threads) {
-        Ok(p) => p,
-        // No threads to be had: one band, on this thread.
-        Err(_) => parallel::Parallel::new(figure, mesh, 1).expect("one band needs no thread"),
-    };
+    // No threads to be had: one band, on this thread.
+    let mut pipeline = parallel::Parallel::new(figure, mesh, settings.threads)
+        .or_else(|_| parallel::Parallel::new(figure, mesh, 1))
+        .expect("one band needs no thread");
     let mut frame = Frame::default();
     pipeline.render(mesh, &camera, &uniforms, &mut frame);
     let stats = pipeline.stats();
@@ -175,7 +174,9 @@ pub fn build_up(figure: Figure, mesh: &Mesh, settings: &Settings, max_frames: us
     let faces = mesh.faces.len();
     let per_frame = faces.div_ceil(max_frames.max(1)).max(1);
     let mut frames = Vec::new();
-    let mut pipeline = figure.pipeline_for(mesh);
+    let mut pipeline = parallel::Parallel::new(figure, mesh, settings.threads)
+        .or_else(|_| parallel::Parallel::new(figure, mesh, 1))
+        .expect("one band needs no thread");
     let (camera, uniforms) = (settings.camera(), settings.uniforms());
     let mut k = 0;
     while k < faces {
