@@ -142,7 +142,7 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Pipeline<S, I, R> {
         let fit = screen.fit(mesh);
         self.stats = Stats {
             triangles: mesh.faces.len() as u64,
-            near_plane_skipped: fit.in_front,
+            near_plane_skipped: fit.in_front && camera.near.is_some(),
             view_tests_skipped: fit.inside,
             ..Stats::default()
         };
