@@ -688,19 +688,22 @@ fn refuse_unused_options(command: &str, m: &ArgMatches) -> Result<(), String> {
             }
         }
     }
-    let shaded = lit || (command == "raytrace" && !m.get_flag("flat"));
-    for id in ["light", "light_power", "indirect"] {
-        if given(id) && stage.is_some() && !shaded {
-            return Err(format!(
-                "--{} does nothing for {what}: only vertex-light and pixel-light are lit",
-                id.replace('_', "-")
-            ));
-        }
-        if given(id) && command == "raytrace" && !shaded {
-            return Err(format!(
-                "--{} does nothing for raytrace --flat: flat colours are not lit",
-                id.replace('_', "-")
-            ));
+    // Why the light would do nothing, if it would.
+    let unlit = if command == "raytrace" {
+        m.get_flag("flat")
+            .then(|| "raytrace --flat: flat colours are not lit".to_string())
+    } else {
+        (stage.is_some() && !lit)
+            .then(|| format!("{what}: only vertex-light and pixel-light are lit"))
+    };
+    if let Some(reason) = unlit {
+        for id in ["light", "light_power", "indirect"] {
+            if given(id) {
+                return Err(format!(
+                    "--{} does nothing for {reason}",
+                    id.replace('_', "-")
+                ));
+            }
         }
     }
     Ok(())

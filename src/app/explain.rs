@@ -439,13 +439,12 @@ pub fn pixels_drawn_twice(
 ) -> usize {
     use crate::measure::figure::{Figure, StageName};
     use std::collections::HashMap;
-    let mut surfaces: HashMap<_, Vec<usize>> = HashMap::new();
-    for (i, t) in mesh.triangles().enumerate() {
-        let bits = |v: glam::Vec3| v.to_array().map(|c| (c + 0.0).to_bits());
-        surfaces
-            .entry((bits(t.normal), bits(t.color)))
-            .or_default()
-            .push(i);
+    let mut surfaces: HashMap<usize, Vec<usize>> = HashMap::new();
+    for (face, surface) in crate::measure::metrics::surfaces(mesh)
+        .into_iter()
+        .enumerate()
+    {
+        surfaces.entry(surface).or_default().push(face);
     }
     let figure = Figure::of(StageName::Filled).with_raster(raster);
     let mut twice = 0;

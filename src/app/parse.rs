@@ -97,14 +97,17 @@ pub fn image_path(s: &str) -> Result<std::path::PathBuf, String> {
     }
 }
 
+/// Whether `path`'s name ends in `.ext`, in any case.
+fn has_extension(path: &std::path::Path, ext: &str) -> bool {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case(ext))
+}
+
 /// Where a model goes: a file ending in `.obj`.
 pub fn obj_path(s: &str) -> Result<std::path::PathBuf, String> {
     let path = std::path::PathBuf::from(s);
-    let obj = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .is_some_and(|e| e.eq_ignore_ascii_case("obj"));
-    if obj {
+    if has_extension(&path, "obj") {
         Ok(path)
     } else {
         Err(format!(
@@ -116,11 +119,7 @@ pub fn obj_path(s: &str) -> Result<std::path::PathBuf, String> {
 /// Where an animation goes: a `.gif` file, or - for standard output.
 pub fn gif_path(s: &str) -> Result<std::path::PathBuf, String> {
     let path = std::path::PathBuf::from(s);
-    let gif = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .is_some_and(|e| e.eq_ignore_ascii_case("gif"));
-    if s == "-" || gif {
+    if s == "-" || has_extension(&path, "gif") {
         Ok(path)
     } else {
         Err(format!(

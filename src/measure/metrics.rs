@@ -65,6 +65,24 @@ pub fn differing_fraction(image: &Frame, reference: &Frame, mask: Option<&[bool]
     }
 }
 
+/// Each face's surface, named by the first face of it: faces of one flat
+/// surface (a wall's two triangles) share a normal and a colour; on a mesh with
+/// vertex normals, which is smooth across its faces, the colour alone names it.
+/// A map, so this stays linear in the number of faces.
+pub fn surfaces(mesh: &Mesh) -> Vec<usize> {
+    let smooth = !mesh.normals.is_empty();
+    // `+ 0.0` makes -0 and 0 one key, as `==` would.
+    let bits = |v: glam::Vec3| v.to_array().map(|c| (c + 0.0).to_bits());
+    let mut first = std::collections::HashMap::new();
+    mesh.triangles()
+        .enumerate()
+        .map(|(i, t)| {
+            let normal = if smooth { glam::Vec3::ZERO } else { t.normal };
+            *first.entry((bits(normal), bits(t.color))).or_insert(i)
+        })
+        .collect()
+}
+
 /// Interior pixels: those whose whole (2 margin + 1)² neighbourhood shows the same
 /// surface (same colour and normal) in `hit`, the reference's triangle per pixel.
 /// Near edges the rasterizer and the ray tracer sample differently (truncation
@@ -76,23 +94,7 @@ pub fn interior_mask(
     height: u32,
     margin: u32,
 ) -> Vec<bool> {
-    // Two triangles of one wall are one surface: name surfaces by their first
-    // triangle with that normal and colour (a map, so this stays linear). A mesh
-    // with vertex normals is smooth across its triangles: there colour alone names
-    // a surface.
-    let smooth = !mesh.normals.is_empty();
-    let mut first = std::collections::HashMap::new();
-    let surface: Vec<usize> = mesh
-        .triangles()
-        .enumerate()
-        .map(|(i, t)| {
-            // `+ 0.0` makes -0 and 0 one key, as `==` would.
-            let bits = |v: glam::Vec3| v.to_array().map(|c| (c + 0.0).to_bits());
-            let normal = if smooth { glam::Vec3::ZERO } else { t.normal };
-            let key = (bits(normal), bits(t.color));
-            *first.entry(key).or_insert(i)
-        })
-        .collect();
+    let surface = surfaces(mesh);
     let id = |x: u32, y: u32| hit[(y * width + x) as usize].map(|i| surface[i as usize]);
     let mut mask = vec![false; (width * height) as usize];
     let m = margin;

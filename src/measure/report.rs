@@ -284,20 +284,23 @@ pub fn measure_all(
         rows.push(row);
         let ks: &[u32] = if size == plan.k_size { plan_ks } else { &[1] };
         for &k in ks {
+            // The scene itself at k = 1: no copy of a large model.
+            let split;
             let scene = if k == 1 {
-                base.clone()
+                base
             } else {
-                subdivide(base, k)
+                split = subdivide(base, k);
+                &split
             };
             let camera = camera_for(size, &pose);
             for &view in &figures {
-                let mut pipeline = view.pipeline_for(&scene);
+                let mut pipeline = view.pipeline_for(scene);
                 let mut frame = Frame::default();
-                pipeline.render(&scene, &camera, &uniforms, &mut frame); // warm-up
+                pipeline.render(scene, &camera, &uniforms, &mut frame); // warm-up
                 let timing = time_runs(plan.runs, || {
-                    pipeline.render(&scene, &camera, &uniforms, &mut frame)
+                    pipeline.render(scene, &camera, &uniforms, &mut frame)
                 });
-                let metric = measure(view, base, &scene, &camera, &frame, &r, k);
+                let metric = measure(view, base, scene, &camera, &frame, &r, k);
                 let row = Row {
                     stage: view.label(),
                     size,

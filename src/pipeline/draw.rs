@@ -233,31 +233,10 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Pipeline<S, I, R> {
         // Empty unless the stage tests depth (`draw` checked it has a buffer then).
         let depth_buffer = target.depth.as_deref_mut().unwrap_or_default();
         let mut color = target.color.as_deref_mut();
-        let mut written = 0u64;
-        if !S::BATCH_SHADING {
-            R::polygon(
-                &mut self.scratch,
-                projected.as_slice(),
-                &screen.viewport,
-                |p| {
-                    rasterized += 1;
-                    let i = (p.y as usize - first_row) * width + p.x as usize;
-                    if depth_test::<S>(depth_buffer, i, p.zinv) {
-                        written += 1;
-                        if let Some(color) = color.as_deref_mut() {
-                            let varying = I::decode(p.zinv, p.varying);
-                            color[i] = pack(S::pixel_shader(&varying, surface, uniforms));
-                        }
-                    }
-                },
-            );
-            self.stats.pixels_written += written;
-            self.stats.depth_rejected += rasterized - written;
-            return;
-        }
         let visible = &mut self.visible;
         visible.index.clear();
         visible.carried.clear();
+        let mut written = 0u64;
         R::polygon(
             &mut self.scratch,
             projected.as_slice(),
@@ -265,16 +244,23 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Pipeline<S, I, R> {
             |p| {
                 rasterized += 1;
                 let i = (p.y as usize - first_row) * width + p.x as usize;
-                if depth_test::<S>(depth_buffer, i, p.zinv) {
+                if !depth_test::<S>(depth_buffer, i, p.zinv) {
+                    return;
+                }
+                written += 1;
+                if S::BATCH_SHADING {
+                    // Shaded below, the whole triangle's visible pixels at once.
                     visible.index.push(i);
                     visible.carried.push((p.zinv, p.varying));
+                } else if let Some(color) = color.as_deref_mut() {
+                    let varying = I::decode(p.zinv, p.varying);
+                    color[i] = pack(S::pixel_shader(&varying, surface, uniforms));
                 }
             },
         );
-        written = visible.index.len() as u64;
         self.stats.pixels_written += written;
         self.stats.depth_rejected += rasterized - written;
-        if let Some(color) = color {
+        if let (true, Some(color)) = (S::BATCH_SHADING, color) {
             visible.shade::<S, I>(surface, uniforms, color);
         }
     }
