@@ -447,14 +447,17 @@ pub fn pixels_drawn_twice(
         surfaces.entry(surface).or_default().push(face);
     }
     let figure = Figure::of(StageName::Filled).with_raster(raster);
+    // One copy of the mesh, drawn one face at a time.
+    let mut one = crate::pipeline::Mesh {
+        faces: Vec::with_capacity(1),
+        ..mesh.clone()
+    };
     let mut twice = 0;
     for faces in surfaces.values() {
         let mut hits = vec![0u8; (settings.width * settings.height) as usize];
         for &f in faces {
-            let one = crate::pipeline::Mesh {
-                faces: vec![mesh.faces[f]],
-                ..mesh.clone()
-            };
+            one.faces.clear();
+            one.faces.push(mesh.faces[f]);
             let frame = super::render(figure, &one, settings, None).0;
             for (h, &c) in hits.iter_mut().zip(&frame.color) {
                 *h += (c != 0) as u8;

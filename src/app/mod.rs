@@ -178,13 +178,16 @@ pub fn build_up(figure: Figure, mesh: &Mesh, settings: &Settings, max_frames: us
         .or_else(|_| parallel::Parallel::new(figure, mesh, 1))
         .expect("one band needs no thread");
     let (camera, uniforms) = (settings.camera(), settings.uniforms());
-    let mut k = 0;
-    while k < faces {
-        k = (k + per_frame).min(faces);
-        let prefix = Mesh {
-            faces: mesh.faces[..k].to_vec(),
-            ..mesh.clone()
-        };
+    // One copy of the mesh whose faces grow: no copy of the vertices per frame.
+    let mut prefix = Mesh {
+        faces: Vec::with_capacity(faces),
+        ..mesh.clone()
+    };
+    while prefix.faces.len() < faces {
+        let k = (prefix.faces.len() + per_frame).min(faces);
+        prefix
+            .faces
+            .extend_from_slice(&mesh.faces[prefix.faces.len()..k]);
         let mut frame = Frame::default();
         pipeline.render(&prefix, &camera, &uniforms, &mut frame);
         frames.push(frame);
