@@ -7,8 +7,12 @@
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use rasterlab::app::Settings;
 use rasterlab::measure::figure::Raster;
+use rasterlab::pipeline::raster::bresenham::walk_line;
+use rasterlab::pipeline::raster::Lines;
 use rasterlab::scene::{cornell_box, subdivide};
+use rasterlab::Pixel;
 use rasterlab::{Figure, Frame, Mesh, StageName};
+use std::hint::black_box;
 
 fn bench(c: &mut Criterion, group: &str, mesh: &Mesh, size: (u32, u32), figures: &[Figure]) {
     let settings = Settings {
@@ -58,5 +62,49 @@ fn stages(c: &mut Criterion) {
     );
 }
 
-criterion_group!(benches, stages);
+/// `--lines bresenham` against the handout's `Interpolate`: walking every line
+/// from (0, 0) to |dx|, |dy| <= 64 (Mpixel/s of line), and the wireframe and
+/// filled box at 500x500 drawn each way (rows rasterizer).
+fn lines(c: &mut Criterion) {
+    let mut g = c.benchmark_group("lines");
+    g.sample_size(20);
+    let ends: Vec<(i32, i32)> = (-64..=64)
+        .flat_map(|x| (-64..=64).map(move |y| (x, y)))
+        .collect();
+    let pixels: u64 = ends
+        .iter()
+        .map(|&(x, y)| x.abs().max(y.abs()) as u64 + 1)
+        .sum();
+    g.throughput(Throughput::Elements(pixels));
+    for lines in [Lines::Interpolate, Lines::Bresenham] {
+        g.bench_function(format!("walk every line, {lines:?}"), |b| {
+            b.iter(|| {
+                let mut sum = 0i64;
+                for &(x, y) in &ends {
+                    walk_line(lines, Pixel::at(0, 0), Pixel::at(x, y), |p| {
+                        sum += (p.x ^ p.y) as i64
+                    });
+                }
+                black_box(sum)
+            })
+        });
+    }
+    let mesh = cornell_box();
+    let settings = Settings::default();
+    let (camera, uniforms) = (settings.camera(), settings.uniforms());
+    g.throughput(Throughput::Elements(500 * 500));
+    for stage in [StageName::Wireframe, StageName::Filled] {
+        for lines in [Lines::Interpolate, Lines::Bresenham] {
+            let figure = Figure::of(stage).with_lines(lines);
+            let mut pipeline = figure.pipeline_for(&mesh);
+            let mut frame = Frame::default();
+            g.bench_function(format!("box 500x500, {}", figure.label()), |b| {
+                b.iter(|| pipeline.render(&mesh, &camera, &uniforms, &mut frame))
+            });
+        }
+    }
+    g.finish();
+}
+
+criterion_group!(benches, stages, lines);
 criterion_main!(benches);

@@ -7,6 +7,7 @@ use rasterlab::app::{self, controls, explain, parse, viewer, Settings};
 use rasterlab::measure::figure::Raster;
 use rasterlab::measure::raytrace;
 use rasterlab::pipeline::draw::Cull;
+use rasterlab::pipeline::raster::Lines;
 use rasterlab::scene::{framed_pose, parse_scene, write_obj, Scene};
 use rasterlab::{Figure, StageName};
 use std::path::PathBuf;
@@ -238,6 +239,15 @@ enum CullArg {
     Front,
 }
 
+/// How lines are walked.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum LinesArg {
+    /// The handout's Interpolate: a running float sum, truncated.
+    Interpolate,
+    /// Bresenham's integer algorithm: the pixel nearest the true line.
+    Bresenham,
+}
+
 /// How a stage is drawn.
 #[derive(Args, Debug)]
 struct DrawArgs {
@@ -255,6 +265,10 @@ struct DrawArgs {
     /// Leave out back- or front-facing faces (normal away from or toward the camera).
     #[arg(long, value_name = "FACES", value_enum, default_value = "none")]
     cull: CullArg,
+    /// How lines are walked: the wireframe's, and with --raster rows the polygon
+    /// edges that ComputePolygonRows follows.
+    #[arg(long, value_name = "WALK", value_enum, default_value = "interpolate")]
+    lines: LinesArg,
 }
 
 impl DrawArgs {
@@ -277,9 +291,14 @@ impl DrawArgs {
             CullArg::Back => Cull::Back,
             CullArg::Front => Cull::Front,
         };
+        let lines = match self.lines {
+            LinesArg::Interpolate => Lines::Interpolate,
+            LinesArg::Bresenham => Lines::Bresenham,
+        };
         Figure::with_interpolation(stage, self.affine())
             .with_raster(raster)
             .with_cull(cull)
+            .with_lines(lines)
     }
 }
 
@@ -395,6 +414,11 @@ enum Explain {
     ///
     /// Example: `rasterlab explain line 4,2 1,8`, the handout's example.
     Line(ExplainLine),
+    /// The same line walked by Interpolate (the handout's) and by Bresenham's
+    /// algorithm (--lines bresenham): both pixel sets, and how far each strays.
+    ///
+    /// Example: `rasterlab explain bresenham 0,0 12,5`.
+    Bresenham(ExplainLine),
     /// A convex polygon's edges, the pixels Interpolate puts on them, each row's
     /// start and end, and the filled rows (section 4), with the rows printout.
     ///
@@ -442,7 +466,8 @@ struct ExplainLine {
     /// The line's last pixel, X,Y.
     #[arg(value_name = "B", value_parser = parse::point, allow_hyphen_values = true)]
     b: (i32, i32),
-    /// Output image (.png or .bmp, or - for standard output) [default: explain-line.png]
+    /// Output image (.png or .bmp, or - for standard output) [default:
+    /// explain-line.png or explain-bresenham.png]
     #[arg(short, long, value_name = "FILE", value_parser = parse::image_path,
           allow_hyphen_values = true)]
     out: Option<PathBuf>,
@@ -625,6 +650,11 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Command::Explain(e) => {
             let (picture, out, default) = match e {
                 Explain::Line(a) => (explain::explain_line(a.a, a.b), &a.out, "explain-line.png"),
+                Explain::Bresenham(a) => (
+                    explain::explain_bresenham(a.a, a.b),
+                    &a.out,
+                    "explain-bresenham.png",
+                ),
                 Explain::Rows(a) => (
                     explain::explain_rows(&a.vertices),
                     &a.out,
@@ -679,8 +709,22 @@ fn refuse_unused_options(command: &str, m: &ArgMatches) -> Result<(), String> {
             "--buffer does nothing for {command}: only depth, vertex-light and pixel-light have a depth buffer"
         ));
     }
+    if given("lines") {
+        let edge = m.get_one::<RasterArg>("raster") == Some(&RasterArg::Edge);
+        match stage {
+            Some(StageName::Points) => {
+                return Err("--lines does nothing for points: points draw no lines".into())
+            }
+            Some(s) if s != StageName::Wireframe && edge => {
+                return Err(format!(
+                    "--lines does nothing for {what} --raster edge: the edge rasterizer fills polygons without walking their edges"
+                ))
+            }
+            _ => {}
+        }
+    }
     if command == "raytrace" {
-        for id in ["raster", "cull", "stats", "buffer", "threads"] {
+        for id in ["raster", "cull", "stats", "buffer", "threads", "lines"] {
             if given(id) {
                 return Err(format!(
                     "--{id} does nothing for raytrace: it casts rays, it does not rasterize"

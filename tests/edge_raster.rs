@@ -28,6 +28,7 @@ fn viewport() -> Viewport {
         half_height: H / 2,
         centre: (W as f32 / 2.0, H as f32 / 2.0),
         bounds: Bounds { x: 0..W, y: 0..H },
+        lines: Default::default(),
     }
 }
 

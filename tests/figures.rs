@@ -90,6 +90,11 @@ fn committed_pictures_match_the_code() {
         &steps.join("explain-rows.png"),
         &explain_rows(&[(10, 5), (5, 10), (15, 15)]).unwrap(),
     );
+    // rasterlab explain bresenham 0,0 12,5
+    assert_picture(
+        &steps.join("explain-bresenham.png"),
+        &rasterlab::app::explain::explain_bresenham((0, 0), (12, 5)).unwrap(),
+    );
     // rasterlab explain edge 0.5,0.5 6.5,0.5 0.5,6.5
     assert_picture(
         &steps.join("explain-edge.png"),

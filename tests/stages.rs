@@ -40,6 +40,7 @@ fn the_front_edges_of_the_box_land_on_the_image_borders() {
             half_height: 250,
             centre: (250.0, 250.0),
             bounds: Bounds::unbounded(),
+            lines: Default::default(),
         };
         let vertex = ScreenVertex {
             x: cx,
@@ -308,4 +309,46 @@ fn the_ragged_seam_is_the_depth_tests_strict_greater_than() {
     }
     // Measured: 109 of the 241 rows keep the left wall's colour at x = 126.
     assert!(rows[0] > 50 && rows[1] > 50, "{rows:?}");
+}
+
+/// `--lines bresenham` moves some of the wireframe's pixels by one, never more,
+/// and keeps its vertices: each white pixel of either figure has a white pixel of
+/// the other within one pixel, and the corners of the box's front face (where
+/// lines end) stay lit in both.
+#[test]
+fn bresenham_wireframe_moves_pixels_by_one_at_most() {
+    use rasterlab::pipeline::raster::Lines;
+    let mesh = cornell_box();
+    let camera = Camera::handout(500, 500);
+    let uniforms = rasterlab::app::Settings::default().uniforms();
+    let draw = |lines| {
+        Figure::of(Wireframe)
+            .with_lines(lines)
+            .render(&mesh, &camera, &uniforms)
+    };
+    let (interpolate, bresenham) = (draw(Lines::Interpolate), draw(Lines::Bresenham));
+    let lit = |f: &rasterlab::Frame| -> BTreeSet<(i32, i32)> {
+        (0..500 * 500)
+            .filter(|&i| f.color[i] != 0)
+            .map(|i| ((i % 500) as i32, (i / 500) as i32))
+            .collect()
+    };
+    let (a, b) = (lit(&interpolate), lit(&bresenham));
+    let near = |set: &BTreeSet<(i32, i32)>, (x, y): (i32, i32)| {
+        (-1..=1).any(|dx| (-1..=1).any(|dy| set.contains(&(x + dx, y + dy))))
+    };
+    assert!(a.iter().all(|&p| near(&b, p)) && b.iter().all(|&p| near(&a, p)));
+    let moved = a.symmetric_difference(&b).count();
+    eprintln!(
+        "{} and {} lit pixels, {moved} in only one",
+        a.len(),
+        b.len()
+    );
+    assert!(
+        moved > 100,
+        "the two walks differ on slanted lines: {moved}"
+    );
+    for corner in [(1, 1), (499, 499)] {
+        assert!(a.contains(&corner) && b.contains(&corner), "{corner:?}");
+    }
 }

@@ -4,6 +4,8 @@
 //!
 //! - `explain line A B`: the pixels `Interpolate` gives a line (section 3), numbered
 //!   in order, over the exact segment.
+//! - `explain bresenham A B`: the same line walked by `Interpolate` and by
+//!   Bresenham's algorithm (`--lines bresenham`), and how far each strays.
 //! - `explain rows A B C ...`: a polygon's exact edges, the pixels `Interpolate` puts
 //!   on each edge, each row's start and end, and the filled rows (section 4), with
 //!   the printout of `rasterlab rows` beside them.
@@ -14,9 +16,10 @@
 use crate::measure::plot::{Canvas, Rgb, BLACK, DARK, GREY};
 use crate::pipeline::clip::ScreenVertex;
 use crate::pipeline::interpolate::{line_pixels, Pixel, Steps};
+use crate::pipeline::raster::bresenham::walk_line;
 use crate::pipeline::raster::edge::SUBPIXEL;
 use crate::pipeline::raster::rows::{compute_polygon_rows, draw_polygon_rows, Rows};
-use crate::pipeline::raster::{Bounds, EdgeRaster, Rasterizer, RowRaster, Viewport};
+use crate::pipeline::raster::{Bounds, EdgeRaster, Lines, Rasterizer, RowRaster, Viewport};
 use crate::pipeline::Frame;
 use crate::pipeline::Nothing;
 
@@ -191,6 +194,150 @@ pub fn explain_line(a: (i32, i32), b: (i32, i32)) -> Result<Frame, String> {
     Ok(c.frame)
 }
 
+/// How far a line's pixels stray from the exact segment between the centres of
+/// its end pixels, measured across the line (along its minor axis): the largest
+/// and the mean, in pixels.
+pub fn line_offsets(a: (i32, i32), b: (i32, i32), pixels: &[(i32, i32)]) -> (f64, f64) {
+    let (dx, dy) = ((b.0 - a.0) as f64, (b.1 - a.1) as f64);
+    let offset = |&(x, y): &(i32, i32)| {
+        let (u, v) = ((x - a.0) as f64, (y - a.1) as f64);
+        match (dx.abs() >= dy.abs(), dx == 0.0) {
+            (_, true) if dy == 0.0 => u.hypot(v),
+            (true, _) => (v - u * dy / dx).abs(),
+            (false, _) => (u - v * dx / dy).abs(),
+        }
+    };
+    let max = pixels.iter().map(offset).fold(0.0, f64::max);
+    let mean = pixels.iter().map(offset).sum::<f64>() / pixels.len().max(1) as f64;
+    (max, mean)
+}
+
+/// The pixels of a line from `a` to `b`, walked the way `lines` says.
+fn walked(lines: Lines, a: (i32, i32), b: (i32, i32)) -> Vec<(i32, i32)> {
+    let mut pixels = Vec::new();
+    walk_line(lines, Pixel::at(a.0, a.1), Pixel::at(b.0, b.1), |p| {
+        pixels.push((p.x, p.y))
+    });
+    pixels
+}
+
+/// Interpolate against Bresenham over every line from (0, 0) to a point with
+/// |dx|, |dy| <= `reach`: the share of pixels where they differ, and for each the
+/// largest and the mean offset from the exact line.
+pub fn compare_line_walks(reach: i32) -> LineComparison {
+    let (mut pixels, mut differing) = (0usize, 0usize);
+    let (mut max, mut sum) = ([0.0f64; 2], [0.0f64; 2]);
+    for dx in -reach..=reach {
+        for dy in -reach..=reach {
+            let b = (dx, dy);
+            let walks = [Lines::Interpolate, Lines::Bresenham].map(|l| walked(l, (0, 0), b));
+            differing += walks[0]
+                .iter()
+                .zip(&walks[1])
+                .filter(|(p, q)| p != q)
+                .count();
+            pixels += walks[0].len();
+            for (k, walk) in walks.iter().enumerate() {
+                let (m, mean) = line_offsets((0, 0), b, walk);
+                max[k] = max[k].max(m);
+                sum[k] += mean * walk.len() as f64;
+            }
+        }
+    }
+    LineComparison {
+        pixels,
+        differing,
+        max_offset: max,
+        mean_offset: sum.map(|s| s / pixels as f64),
+    }
+}
+
+/// What [`compare_line_walks`] found; `[Interpolate, Bresenham]` in the arrays.
+#[derive(Clone, Copy, Debug)]
+pub struct LineComparison {
+    pub pixels: usize,
+    pub differing: usize,
+    pub max_offset: [f64; 2],
+    pub mean_offset: [f64; 2],
+}
+
+/// `explain bresenham A B`: the pixels `Interpolate` gives a line (light cells)
+/// and those of Bresenham's algorithm (dots), over the exact segment, with both
+/// lists and how far each strays from the line; below, the same comparison over
+/// every line of up to 16 pixels each way.
+pub fn explain_bresenham(a: (i32, i32), b: (i32, i32)) -> Result<Frame, String> {
+    let grid = Grid::around(&[a, b])?;
+    let by_interpolate = walked(Lines::Interpolate, a, b);
+    let by_bresenham = walked(Lines::Bresenham, a, b);
+    let differ = by_interpolate
+        .iter()
+        .zip(&by_bresenham)
+        .filter(|(p, q)| p != q)
+        .count();
+    let mut text = vec![
+        format!(
+            "({},{}) -> ({},{}), {} pixels:",
+            a.0,
+            a.1,
+            b.0,
+            b.1,
+            by_interpolate.len()
+        ),
+        "   Interpolate  Bresenham".to_string(),
+    ];
+    text.extend(
+        by_interpolate
+            .iter()
+            .zip(&by_bresenham)
+            .enumerate()
+            .map(|(i, (p, q))| {
+                let mark = if p == q { "" } else { "  *" };
+                format!("{i:>2}: ({},{})  ({},{}){mark}", p.0, p.1, q.0, q.1)
+            }),
+    );
+    let (oi, ob) = (
+        line_offsets(a, b, &by_interpolate),
+        line_offsets(a, b, &by_bresenham),
+    );
+    let all = compare_line_walks(16);
+    text.extend([
+        String::new(),
+        format!("{differ} of {} pixels differ (*)", by_interpolate.len()),
+        "off the exact line, largest / mean:".to_string(),
+        format!("  Interpolate {:.2} / {:.2} px", oi.0, oi.1),
+        format!("  Bresenham   {:.2} / {:.2} px", ob.0, ob.1),
+        String::new(),
+        "every line from 0,0 to |dx|, |dy| <= 16:".to_string(),
+        format!(
+            "  {:.1} % of {} pixels differ",
+            100.0 * all.differing as f64 / all.pixels as f64,
+            all.pixels
+        ),
+        format!(
+            "  Interpolate {:.2} / {:.2} px",
+            all.max_offset[0], all.mean_offset[0]
+        ),
+        format!(
+            "  Bresenham   {:.2} / {:.2} px",
+            all.max_offset[1], all.mean_offset[1]
+        ),
+        String::new(),
+        "cells: Interpolate's pixels".to_string(),
+        "dots: Bresenham's pixels".to_string(),
+        "line: the exact segment, centre to centre".to_string(),
+    ]);
+    let mut c = canvas_for(&grid, "Interpolate and Bresenham", &text);
+    for &(x, y) in &by_interpolate {
+        grid.fill(&mut c, x, y, FILLED);
+    }
+    grid.draw_lines(&mut c);
+    c.line(grid.centre(a.0, a.1), grid.centre(b.0, b.1), EXACT, 2);
+    for &(x, y) in &by_bresenham {
+        grid.dot(&mut c, x, y, EDGE_COLORS[1]);
+    }
+    Ok(c.frame)
+}
+
 /// `explain rows A B C ...`: the polygon's exact edges, the pixels `Interpolate`
 /// puts on each edge (a dot in the edge's colour), each row's start and end (dark
 /// cells) and the filled rows (light cells), with `rows_text` beside them.
@@ -256,6 +403,7 @@ fn fractional_grid(corners: &[(f32, f32)]) -> Result<(Grid, Viewport), String> {
             x: ox..ox + grid.cells.0,
             y: oy..oy + grid.cells.1,
         },
+        lines: Lines::Interpolate,
     };
     Ok((grid, viewport))
 }
@@ -518,5 +666,32 @@ mod tests {
         };
         assert_eq!(centre(0, 3), EDGE_COLORS[0], "left leg: taken");
         assert_eq!(centre(3, 3), EDGE_COLORS[2], "hypotenuse: left out");
+    }
+}
+
+#[cfg(test)]
+mod bresenham_tests {
+    use super::*;
+
+    #[test]
+    fn bresenham_stays_within_half_a_pixel_and_interpolate_does_not() {
+        let all = compare_line_walks(16);
+        // Every line gets max(|dx|, |dy|) + 1 pixels either way.
+        let expected: usize = (-16i32..=16)
+            .flat_map(|dx| (-16i32..=16).map(move |dy| dx.abs().max(dy.abs()) as usize + 1))
+            .sum();
+        assert_eq!(all.pixels, expected);
+        assert_eq!(all.max_offset[1], 0.5, "Bresenham: the nearest pixel");
+        // Truncation moves a pixel by up to one; the running sum's drift can
+        // push a value that should be whole just below it.
+        assert!(
+            all.max_offset[0] > 0.9 && all.max_offset[0] <= 1.0 + 1e-9,
+            "{all:?}"
+        );
+        assert!(all.mean_offset[1] < all.mean_offset[0], "{all:?}");
+        assert!(
+            all.differing > all.pixels / 4 && all.differing < all.pixels / 2,
+            "{all:?}"
+        );
     }
 }

@@ -2,7 +2,7 @@
 //! the one place that turns a choice made at run time into a pipeline type.
 
 use crate::pipeline::draw::Cull;
-use crate::pipeline::raster::{EdgeRaster, Rasterizer, RowRaster};
+use crate::pipeline::raster::{EdgeRaster, Lines, Rasterizer, RowRaster};
 use crate::pipeline::stage::SmoothPixelLight;
 use crate::pipeline::{
     Affine, Camera, Depth, Filled, Frame, Interpolation, Mesh, Perspective, Pipeline, PixelLight,
@@ -80,6 +80,9 @@ pub struct Figure {
     pub affine: bool,
     pub raster: Raster,
     pub cull: Cull,
+    /// How lines (and the rows' polygon edges) are walked: the handout's
+    /// `Interpolate` or Bresenham's algorithm.
+    pub lines: Lines,
 }
 
 /// Something to do with a pipeline once its stage, interpolation and rasterizer
@@ -109,6 +112,7 @@ fn with_types<I: Interpolation, R: Rasterizer, W: WithStage>(
 
 struct NewPipeline {
     cull: Cull,
+    lines: Lines,
 }
 
 impl WithStage for NewPipeline {
@@ -116,6 +120,7 @@ impl WithStage for NewPipeline {
     fn with<S: Stage, I: Interpolation, R: Rasterizer>(self) -> Box<dyn Render + Send> {
         let mut pipeline = Pipeline::<S, I, R>::new();
         pipeline.cull = self.cull;
+        pipeline.lines = self.lines;
         Box::new(pipeline)
     }
 }
@@ -134,6 +139,7 @@ impl Figure {
             affine: true,
             raster: Raster::Rows,
             cull: Cull::None,
+            lines: Lines::Interpolate,
         },
     ];
 
@@ -144,6 +150,7 @@ impl Figure {
             affine: matches!(stage, StageName::VertexLight),
             raster: Raster::Rows,
             cull: Cull::None,
+            lines: Lines::Interpolate,
         }
     }
 
@@ -165,6 +172,10 @@ impl Figure {
 
     pub fn with_cull(self, cull: Cull) -> Self {
         Figure { cull, ..self }
+    }
+
+    pub fn with_lines(self, lines: Lines) -> Self {
+        Figure { lines, ..self }
     }
 
     /// Whether this is the handout's interpolation for its stage.
@@ -208,6 +219,9 @@ impl Figure {
             Cull::Back => flags += " --cull back",
             Cull::Front => flags += " --cull front",
         }
+        if self.lines == Lines::Bresenham {
+            flags += " --lines bresenham";
+        }
         flags
     }
 
@@ -247,7 +261,13 @@ impl Figure {
     /// The pipeline that draws this figure of `mesh`: the stage types fit the
     /// mesh's attributes (smooth light where it has vertex normals).
     pub fn pipeline_for(self, mesh: &Mesh) -> Box<dyn Render + Send> {
-        self.with_stage(!mesh.normals.is_empty(), NewPipeline { cull: self.cull })
+        self.with_stage(
+            !mesh.normals.is_empty(),
+            NewPipeline {
+                cull: self.cull,
+                lines: self.lines,
+            },
+        )
     }
 
     /// Draws this figure of `mesh` into a new frame.

@@ -10,7 +10,7 @@ use super::clip::{
 };
 use super::interpolate::{Interpolation, Perspective, Pixel, Varying};
 use super::mesh::Mesh;
-use super::raster::{Bounds, Rasterizer, RowRaster, Viewport};
+use super::raster::{Bounds, Lines, Rasterizer, RowRaster, Viewport};
 use super::stage::{Primitive, Stage, Surface, Uniforms};
 use super::target::{pack, Frame, Target};
 use std::marker::PhantomData;
@@ -24,6 +24,8 @@ pub const GUARD_BAND: f32 = 1.0;
 pub struct Pipeline<S: Stage, I: Interpolation = Perspective, R: Rasterizer = RowRaster> {
     /// Which faces to leave out by the way they face the camera.
     pub cull: Cull,
+    /// How lines and the rows' polygon edges are walked.
+    pub lines: Lines,
     scratch: R::Scratch<S::Varying>,
     visible: Visible<S::Varying>,
     stats: Stats,
@@ -105,6 +107,7 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Default for Pipeline<S, I, R> {
     fn default() -> Self {
         Pipeline {
             cull: Cull::None,
+            lines: Lines::Interpolate,
             scratch: Default::default(),
             visible: Visible {
                 index: Vec::new(),
@@ -138,7 +141,7 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Pipeline<S, I, R> {
             "a stage with a depth test needs a depth buffer"
         );
         target.clear();
-        let mut screen = Screen::new(camera, target);
+        let mut screen = Screen::new(camera, target, self.lines);
         let fit = screen.fit(mesh);
         self.stats = Stats {
             triangles: mesh.faces.len() as u64,
@@ -429,7 +432,7 @@ struct Fit {
 }
 
 impl Screen {
-    fn new(camera: &Camera, target: &Target) -> Self {
+    fn new(camera: &Camera, target: &Target, lines: Lines) -> Self {
         let rect = camera.screen_rect();
         let g = camera.width.max(camera.height) as f32 * GUARD_BAND;
         Screen {
@@ -451,6 +454,7 @@ impl Screen {
                     x: 0..target.width.min(camera.width) as i32,
                     y: target.rows.start as i32..target.rows.end.min(camera.height) as i32,
                 },
+                lines,
             },
         }
     }
@@ -513,6 +517,8 @@ pub trait Render {
     fn depth_test(&self) -> bool;
 
     fn set_cull(&mut self, cull: Cull);
+
+    fn set_lines(&mut self, lines: Lines);
 }
 
 impl<S: Stage, I: Interpolation, R: Rasterizer> Render for Pipeline<S, I, R> {
@@ -526,6 +532,10 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Render for Pipeline<S, I, R> {
 
     fn set_cull(&mut self, cull: Cull) {
         self.cull = cull;
+    }
+
+    fn set_lines(&mut self, lines: Lines) {
+        self.lines = lines;
     }
 
     fn draw(&mut self, mesh: &Mesh, camera: &Camera, uniforms: &Uniforms, target: &mut Target) {

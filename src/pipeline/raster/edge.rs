@@ -13,7 +13,7 @@
 //! - Points land on pixel (floor(x), floor(y)); lines join such pixels with the
 //!   handout's `Interpolate`.
 
-use super::rows::draw_line;
+use super::rows::draw_line_by;
 use super::{Rasterizer, Viewport};
 use crate::pipeline::clip::ScreenVertex;
 use crate::pipeline::interpolate::{Pixel, Varying};
@@ -180,7 +180,7 @@ impl Rasterizer for EdgeRaster {
         plot: impl FnMut(Pixel<V>),
     ) {
         let (a, b) = (point_pixel(a, viewport), point_pixel(b, viewport));
-        draw_line(a, b, &viewport.bounds, plot);
+        draw_line_by(viewport.lines, a, b, &viewport.bounds, plot);
     }
 
     /// A convex polygon as a fan of triangles from its first corner: the fan's
@@ -214,6 +214,7 @@ mod tests {
             half_height: h / 2,
             centre: (w as f32 / 2.0, h as f32 / 2.0),
             bounds: Bounds { x: 0..w, y: 0..h },
+            lines: Default::default(),
         }
     }
 

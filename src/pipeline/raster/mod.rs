@@ -7,9 +7,11 @@
 //! handout's (sections 3 and 4); [`EdgeRaster`] is exact (edge functions, pixel
 //! centres, the top-left rule).
 
+pub mod bresenham;
 pub mod edge;
 pub mod rows;
 
+pub use bresenham::Lines;
 pub use edge::EdgeRaster;
 pub use rows::RowRaster;
 
@@ -50,6 +52,8 @@ pub struct Viewport {
     pub half_height: i32,
     pub centre: (f32, f32),
     pub bounds: Bounds,
+    /// How lines, and the rows rasterizer's polygon edges, are walked.
+    pub lines: Lines,
 }
 
 /// A way of covering pixels. Its scratch buffers are kept by the caller from one

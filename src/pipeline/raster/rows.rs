@@ -2,9 +2,10 @@
 //! `Interpolate` (`DrawLineSDL`, section 3), polygons by `ComputePolygonRows` and
 //! `DrawPolygonRows` (section 4).
 
+use super::bresenham::{walk_line, Lines};
 use super::{Bounds, Rasterizer, Viewport};
 use crate::pipeline::clip::ScreenVertex;
-use crate::pipeline::interpolate::{line_pixels, Pixel, Steps, Varying, RUNNING_SUM_LIMIT};
+use crate::pipeline::interpolate::{Pixel, Varying, RUNNING_SUM_LIMIT};
 
 /// The handout's rows rasterizer (`--raster rows`, the default).
 #[derive(Clone, Copy, Debug, Default)]
@@ -40,7 +41,7 @@ impl Rasterizer for RowRaster {
         plot: impl FnMut(Pixel<V>),
     ) {
         let (a, b) = (to_pixel(a, viewport), to_pixel(b, viewport));
-        draw_line(a, b, &viewport.bounds, plot);
+        draw_line_by(viewport.lines, a, b, &viewport.bounds, plot);
     }
 
     fn polygon<V: Varying>(
@@ -53,7 +54,8 @@ impl Rasterizer for RowRaster {
         for (p, &c) in pixels.iter_mut().zip(corners) {
             *p = to_pixel(c, viewport);
         }
-        compute_polygon_rows(&pixels[..corners.len()], &viewport.bounds, rows);
+        let corners = &pixels[..corners.len()];
+        compute_polygon_rows_by(viewport.lines, corners, &viewport.bounds, rows);
         draw_polygon_rows(rows, &viewport.bounds, plot);
     }
 }
@@ -64,13 +66,24 @@ pub fn draw_line<V: Varying>(
     a: Pixel<V>,
     b: Pixel<V>,
     bounds: &Bounds,
+    plot: impl FnMut(Pixel<V>),
+) {
+    draw_line_by(Lines::Interpolate, a, b, bounds, plot)
+}
+
+/// [`draw_line`], with the line walked the way `lines` says.
+pub fn draw_line_by<V: Varying>(
+    lines: Lines,
+    a: Pixel<V>,
+    b: Pixel<V>,
+    bounds: &Bounds,
     mut plot: impl FnMut(Pixel<V>),
 ) {
-    for p in Steps::new(a, b, line_pixels(&a, &b)) {
+    walk_line(lines, a, b, |p| {
         if bounds.contains(&p) {
             plot(p);
         }
-    }
+    })
 }
 
 /// The handout's `leftPixels` and `rightPixels`: the first and last pixel of every
@@ -111,6 +124,16 @@ pub fn compute_polygon_rows<V: Varying>(
     bounds: &Bounds,
     rows: &mut Rows<V>,
 ) {
+    compute_polygon_rows_by(Lines::Interpolate, vertices, bounds, rows)
+}
+
+/// [`compute_polygon_rows`], with the edges walked the way `lines` says.
+pub fn compute_polygon_rows_by<V: Varying>(
+    lines: Lines,
+    vertices: &[Pixel<V>],
+    bounds: &Bounds,
+    rows: &mut Rows<V>,
+) {
     rows.left.clear();
     rows.right.clear();
     let Some(first) = vertices.first() else {
@@ -139,10 +162,10 @@ pub fn compute_polygon_rows<V: Varying>(
     let count = vertices.len();
     for i in 0..count {
         let (a, b) = (vertices[i], vertices[(i + 1) % count]);
-        for p in Steps::new(a, b, line_pixels(&a, &b)) {
+        walk_line(lines, a, b, |p| {
             let row = p.y as i64 - top as i64;
             if row < 0 || row >= n as i64 {
-                continue;
+                return;
             }
             let row = row as usize;
             if p.x < rows.left[row].x {
@@ -151,7 +174,7 @@ pub fn compute_polygon_rows<V: Varying>(
             if p.x > rows.right[row].x {
                 rows.right[row] = p;
             }
-        }
+        });
     }
 }
 
