@@ -13,6 +13,7 @@ use super::mesh::Mesh;
 use super::raster::{Bounds, Lines, Rasterizer, RowRaster, Viewport};
 use super::stage::{Primitive, Stage, Surface, Uniforms};
 use super::target::{pack, Frame, Target};
+use glam::Vec3;
 use std::marker::PhantomData;
 
 /// How far the guard band reaches beyond each side of the screen, in screen
@@ -27,6 +28,9 @@ pub struct Pipeline<S: Stage, I: Interpolation = Perspective, R: Rasterizer = Ro
     /// How lines and the rows' polygon edges are walked.
     pub lines: Lines,
     scratch: R::Scratch<S::Varying>,
+    /// Every vertex of the mesh in camera space, transformed once per frame
+    /// however many faces share it.
+    camera_space: Vec<Vec3>,
     visible: Visible<S::Varying>,
     stats: Stats,
     types: PhantomData<(S, I)>,
@@ -109,6 +113,7 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Default for Pipeline<S, I, R> {
             cull: Cull::None,
             lines: Lines::Interpolate,
             scratch: Default::default(),
+            camera_space: Vec::new(),
             visible: Visible {
                 index: Vec::new(),
                 carried: Vec::new(),
@@ -142,7 +147,15 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Pipeline<S, I, R> {
         );
         target.clear();
         let mut screen = Screen::new(camera, target, self.lines);
-        let fit = screen.fit(mesh);
+        // Taken out of `self` while the faces are drawn, and put back for the next frame.
+        let mut camera_space = std::mem::take(&mut self.camera_space);
+        camera_space.clear();
+        camera_space.extend(
+            mesh.positions
+                .iter()
+                .map(|&p| screen.projection.to_camera(p)),
+        );
+        let fit = screen.fit(&camera_space);
         self.stats = Stats {
             triangles: mesh.faces.len() as u64,
             near_plane_skipped: fit.in_front && camera.near.is_some(),
@@ -171,12 +184,9 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Pipeline<S, I, R> {
                 normal: face.normal,
                 material: *mesh.material(face),
             };
-            let corners = [0, 1, 2].map(|k| {
-                let vertex = mesh.vertex(face, k);
-                CameraVertex {
-                    position: screen.projection.to_camera(vertex.position),
-                    varying: S::vertex_shader(&vertex, &surface, uniforms),
-                }
+            let corners = [0, 1, 2].map(|k| CameraVertex {
+                position: camera_space[face.vertices[k] as usize],
+                varying: S::vertex_shader(&mesh.vertex(face, k), &surface, uniforms),
             });
             match S::PRIMITIVE {
                 Primitive::Points => {
@@ -192,6 +202,7 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Pipeline<S, I, R> {
                 }
             }
         }
+        self.camera_space = camera_space;
     }
 
     /// The handout's `DrawPolygon`: clip, project, rasterize, then the depth test
@@ -461,41 +472,29 @@ impl Screen {
 }
 
 impl Screen {
-    /// Where `mesh` lies: its bounding box's eight corners, in camera space and
-    /// projected. A box in front of the near plane holds a mesh in front of it; a
-    /// box that projects inside the screen holds a mesh inside the view.
-    fn fit(&self, mesh: &Mesh) -> Fit {
-        let Some(&first) = mesh.positions.first() else {
-            return Fit {
-                in_front: true,
-                inside: true,
-            };
-        };
-        let (lo, hi) = mesh
-            .positions
-            .iter()
-            .fold((first, first), |(lo, hi), &p| (lo.min(p), hi.max(p)));
-        let corners = (0..8).map(|i| {
-            let pick = |bit: usize, l: f32, h: f32| if i & bit == 0 { l } else { h };
-            let p = glam::Vec3::new(
-                pick(1, lo.x, hi.x),
-                pick(2, lo.y, hi.y),
-                pick(4, lo.z, hi.z),
-            );
-            self.projection.to_camera(p)
-        });
+    /// Where a mesh lies, from its vertices in camera space: all in front of the
+    /// near plane, and all projecting inside the screen. A triangle lies within its
+    /// corners' projections (all in front of the camera), so then none needs a cut
+    /// or a view test.
+    fn fit(&self, camera_space: &[Vec3]) -> Fit {
         let near = self.near.unwrap_or(f32::MIN_POSITIVE);
         let mut fit = Fit {
             in_front: true,
             inside: true,
         };
-        for c in corners {
-            fit.in_front &= c.z >= near && c.z.is_finite();
-            let on_screen = self.projection.project_centred(c).is_some_and(|(x, y, _)| {
-                (self.rect.left..=self.rect.right).contains(&x)
-                    && (self.rect.top..=self.rect.bottom).contains(&y)
-            });
-            fit.inside &= c.z >= near && on_screen;
+        for &c in camera_space {
+            let in_front = c.z >= near && c.z.is_finite();
+            let on_screen = || {
+                self.projection.project_centred(c).is_some_and(|(x, y, _)| {
+                    (self.rect.left..=self.rect.right).contains(&x)
+                        && (self.rect.top..=self.rect.bottom).contains(&y)
+                })
+            };
+            fit.in_front &= in_front;
+            fit.inside &= in_front && on_screen();
+            if !fit.in_front && !fit.inside {
+                break;
+            }
         }
         fit.in_front |= self.near.is_none();
         fit
@@ -555,7 +554,6 @@ mod tests {
     use crate::pipeline::stage::Primitive;
     use crate::pipeline::stage::{Depth, PixelLight};
     use crate::pipeline::{Affine, Light, Perspective};
-    use glam::Vec3;
 
     /// A wall at z = 2 facing a camera at the origin, 100 x 100 pixels, f = 100.
     fn wall() -> (Mesh, Camera) {

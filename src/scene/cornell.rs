@@ -4,7 +4,7 @@
 //! L = 555) and then scaled into the cube [-1, 1]^3 with x and y negated, so that y
 //! points down as in the handout's section 1.
 
-use crate::pipeline::{Mesh, Triangle};
+use crate::pipeline::{Face, Mesh, Triangle};
 use glam::Vec3;
 
 pub const RED: Vec3 = Vec3::new(0.75, 0.15, 0.15);
@@ -107,34 +107,49 @@ fn cornell_triangles() -> Vec<Triangle> {
 }
 
 /// Splits every triangle into k x k smaller ones on a grid of its barycentric
-/// coordinates, keeping its normal and colour: the same surfaces with k² times the
-/// triangles, for measuring how cost and per-vertex error change with mesh density.
+/// coordinates, keeping its normal and material: the same surfaces with k² times
+/// the triangles, for measuring how cost and per-vertex error change with mesh
+/// density. Neighbouring small triangles share their grid corners, as the
+/// triangles of a modelled mesh share vertices: (k + 1)(k + 2)/2 vertices for
+/// each triangle split, not 3k².
 pub fn subdivide(mesh: &Mesh, k: u32) -> Mesh {
     let k = k.max(1);
-    let mut out = Vec::with_capacity(mesh.faces.len() * (k * k) as usize);
-    for t in mesh.triangles() {
-        // Corner (i, j) of the grid: v0 + (i/k)(v1 - v0) + (j/k)(v2 - v0), i + j <= k.
-        let at = |i: u32, j: u32| {
-            let (a, b) = (i as f32 / k as f32, j as f32 / k as f32);
-            t.v0 + (t.v1 - t.v0) * a + (t.v2 - t.v0) * b
-        };
-        let tri = |a: Vec3, b: Vec3, c: Vec3| Triangle {
-            v0: a,
-            v1: b,
-            v2: c,
-            normal: t.normal,
-            color: t.color,
+    let corners_per_face = ((k + 1) * (k + 2) / 2) as usize;
+    let mut out = Mesh {
+        materials: mesh.materials.clone(),
+        ..Mesh::default()
+    };
+    out.positions.reserve(mesh.faces.len() * corners_per_face);
+    out.faces.reserve(mesh.faces.len() * (k * k) as usize);
+    for face in &mesh.faces {
+        let [v0, v1, v2] = face.vertices.map(|i| mesh.positions[i as usize]);
+        // Corner (i, j) of the grid: v0 + (i/k)(v1 - v0) + (j/k)(v2 - v0), i + j <= k,
+        // stored row by row (j), each row k + 1 - j corners long.
+        let first = out.positions.len() as u32;
+        for j in 0..=k {
+            for i in 0..=k - j {
+                let (a, b) = (i as f32 / k as f32, j as f32 / k as f32);
+                out.positions.push(v0 + (v1 - v0) * a + (v2 - v0) * b);
+            }
+        }
+        let at = |i: u32, j: u32| first + j * (2 * k + 3 - j) / 2 + i;
+        let mut push = |vertices| {
+            out.faces.push(Face {
+                vertices,
+                normal: face.normal,
+                material: face.material,
+            })
         };
         for j in 0..k {
             for i in 0..k - j {
-                out.push(tri(at(i, j), at(i + 1, j), at(i, j + 1)));
+                push([at(i, j), at(i + 1, j), at(i, j + 1)]);
                 if i + j + 1 < k {
-                    out.push(tri(at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)));
+                    push([at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)]);
                 }
             }
         }
     }
-    Mesh::from_triangles(&out)
+    out
 }
 
 #[cfg(test)]
@@ -168,6 +183,37 @@ mod tests {
                 let n = (s.v2 - s.v0).cross(s.v1 - s.v0).normalize();
                 assert!(n.abs_diff_eq(s.normal, 1e-4), "{n} vs {}", s.normal);
             }
+        }
+    }
+
+    #[test]
+    fn subdivision_shares_corners_and_gives_each_small_triangle_exactly() {
+        let mesh = cornell_box();
+        for k in [1, 3, 7] {
+            let sub = subdivide(&mesh, k);
+            assert_eq!(sub.positions.len(), 30 * ((k + 1) * (k + 2) / 2) as usize);
+            // Each small triangle, computed on its own from its grid corners.
+            let mut expected = Vec::new();
+            for t in mesh.triangles() {
+                let at = |i: u32, j: u32| {
+                    let (a, b) = (i as f32 / k as f32, j as f32 / k as f32);
+                    t.v0 + (t.v1 - t.v0) * a + (t.v2 - t.v0) * b
+                };
+                for j in 0..k {
+                    for i in 0..k - j {
+                        expected.push(([at(i, j), at(i + 1, j), at(i, j + 1)], t.color));
+                        if i + j + 1 < k {
+                            expected
+                                .push(([at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)], t.color));
+                        }
+                    }
+                }
+            }
+            let got: Vec<_> = sub
+                .triangles()
+                .map(|t| ([t.v0, t.v1, t.v2], t.color))
+                .collect();
+            assert_eq!(got, expected, "k = {k}");
         }
     }
 
