@@ -242,7 +242,6 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Pipeline<S, I, R> {
         }
         self.stats.clipped += clipped as u64;
         self.stats.drawn += 1;
-        let mut rasterized = 0u64;
         let (width, first_row) = (target.width as usize, target.rows.start as usize);
         // Empty unless the stage tests depth (`draw` checked it has a buffer then).
         let depth_buffer = target.depth.as_deref_mut().unwrap_or_default();
@@ -250,30 +249,37 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Pipeline<S, I, R> {
         let visible = &mut self.visible;
         visible.index.clear();
         visible.carried.clear();
-        let mut written = 0u64;
+        // Counted where it is cheap: rejections are the rare branch, and a batch
+        // counts its own pixels.
+        let (mut rejected, mut written) = (0u64, 0u64);
         R::polygon(
             &mut self.scratch,
             projected.as_slice(),
             &screen.viewport,
             |p| {
-                rasterized += 1;
                 let i = (p.y as usize - first_row) * width + p.x as usize;
                 if !depth_test::<S>(depth_buffer, i, p.zinv) {
+                    rejected += 1;
                     return;
                 }
-                written += 1;
                 if S::BATCH_SHADING {
                     // Shaded below, the whole triangle's visible pixels at once.
                     visible.index.push(i);
                     visible.carried.push((p.zinv, p.varying));
-                } else if let Some(color) = color.as_deref_mut() {
-                    let varying = I::decode(p.zinv, p.varying);
-                    color[i] = pack(S::pixel_shader(&varying, surface, uniforms));
+                } else {
+                    written += 1;
+                    if let Some(color) = color.as_deref_mut() {
+                        let varying = I::decode(p.zinv, p.varying);
+                        color[i] = pack(S::pixel_shader(&varying, surface, uniforms));
+                    }
                 }
             },
         );
+        if S::BATCH_SHADING {
+            written = visible.index.len() as u64;
+        }
         self.stats.pixels_written += written;
-        self.stats.depth_rejected += rasterized - written;
+        self.stats.depth_rejected += rejected;
         if let (true, Some(color)) = (S::BATCH_SHADING, color) {
             visible.shade::<S, I>(surface, uniforms, color);
         }
@@ -371,8 +377,10 @@ fn depth_test<S: Stage>(buffer: &mut [f32], i: usize, zinv: f32) -> bool {
     if !S::DEPTH_TEST {
         return true;
     }
-    // Nearer means larger 1/z. A NaN compares false and is never drawn.
-    if zinv <= buffer[i] || zinv.is_nan() {
+    // Nearer means larger 1/z. A NaN compares false, so it is never drawn: one
+    // comparison per pixel, no separate test for NaN.
+    let nearer = zinv > buffer[i];
+    if !nearer {
         return false;
     }
     buffer[i] = zinv;
