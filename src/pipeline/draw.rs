@@ -76,17 +76,18 @@ pub struct Stats {
 /// The pixels of one triangle that passed the depth test, shaded together once the
 /// triangle is rasterized: the shading loop then runs over plain arrays, which the
 /// compiler vectorises. A triangle covers each pixel once, so the target ends up
-/// exactly as if each pixel were shaded at once.
+/// exactly as if each pixel were shaded at once. The arrays grow to the largest
+/// triangle and are kept, so a small triangle costs only its own pixels.
 struct Visible<V> {
     index: Vec<usize>,
     carried: Vec<(f32, V)>,
+    shaded: Vec<u32>,
 }
 
 impl<V: Varying> Visible<V> {
     /// The handout's `PixelShader` for every visible pixel of one triangle, then
-    /// each colour into its place, a chunk at a time. Kept out of line: a small
-    /// function of its own keeps the light's values in registers, and the shading
-    /// loop vectorises.
+    /// each colour into its place. Kept out of line: a small function of its own
+    /// keeps the light's values in registers, and the shading loop vectorises.
     #[inline(never)]
     fn shade<S: Stage<Varying = V>, I: Interpolation>(
         &mut self,
@@ -94,15 +95,12 @@ impl<V: Varying> Visible<V> {
         uniforms: &Uniforms,
         color: &mut [u32],
     ) {
-        const CHUNK: usize = 64;
-        let mut shaded = [0u32; CHUNK];
-        for (index, carried) in self.index.chunks(CHUNK).zip(self.carried.chunks(CHUNK)) {
-            for (c, &(zinv, q)) in shaded.iter_mut().zip(carried) {
-                *c = pack(S::pixel_shader(&I::decode(zinv, q), surface, uniforms));
-            }
-            for (&i, &c) in index.iter().zip(&shaded) {
-                color[i] = c;
-            }
+        self.shaded.clear();
+        self.shaded.extend(self.carried.iter().map(|&(zinv, q)| {
+            pack(S::pixel_shader(&I::decode(zinv, q), surface, uniforms))
+        }));
+        for (&i, &c) in self.index.iter().zip(&self.shaded) {
+            color[i] = c;
         }
     }
 }
@@ -117,6 +115,7 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Default for Pipeline<S, I, R> {
             visible: Visible {
                 index: Vec::new(),
                 carried: Vec::new(),
+                shaded: Vec::new(),
             },
             stats: Stats::default(),
             types: PhantomData,
