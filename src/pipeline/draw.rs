@@ -96,9 +96,11 @@ impl<V: Varying> Visible<V> {
         color: &mut [u32],
     ) {
         self.shaded.clear();
-        self.shaded.extend(self.carried.iter().map(|&(zinv, q)| {
-            pack(S::pixel_shader(&I::decode(zinv, q), surface, uniforms))
-        }));
+        self.shaded.extend(
+            self.carried
+                .iter()
+                .map(|&(zinv, q)| pack(S::pixel_shader(&I::decode(zinv, q), surface, uniforms))),
+        );
         for (&i, &c) in self.index.iter().zip(&self.shaded) {
             color[i] = c;
         }
