@@ -1,0 +1,14 @@
+//! `rasterlab check`: what a student's screenshot or rows printout shows, and what
+//! was done differently from the handout to get it (issue #14).
+//!
+//! - [`walk`]: the known ways of walking an edge (the handout's `Interpolate` and
+//!   its variants).
+//! - [`rows`]: `check rows`, a printed `ComputePolygonRows` against ours.
+//! - [`student`]: the variants built on the core (a rasterizer, and stages that
+//!   measure a pixel's surface and direct light).
+//! - [`image`]: `check IMAGE`, the stage, the fitted light and the variants.
+
+pub mod image;
+pub mod rows;
+pub mod student;
+pub mod walk;
