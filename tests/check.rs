@@ -345,6 +345,7 @@ fn light_powers_students_used_are_fitted_within_one_percent() {
 }
 
 #[test]
+#[allow(clippy::approx_constant)] // pi as 3.14 is one of the differences
 fn each_known_difference_is_named() {
     let pixel = Lab::handout(Shade::PerPixel);
     let vertex = Lab::handout(Shade::PerVertex);
@@ -765,5 +766,25 @@ fn the_command_writes_json_a_heat_map_and_the_expected_image() {
     assert_eq!(
         text.lines().next().unwrap(),
         "Your image is the handout's Figure 7 at light power 5.1; colours are truncated to 8 bits instead of rounded. Every pixel matches within 1/255."
+    );
+}
+
+#[test]
+fn z_instead_of_one_over_z_differs_only_where_surfaces_meet() {
+    // In the box no surface passes through another, so interpolating z instead of
+    // 1/z only changes which of two touching surfaces wins along their shared
+    // edge, a tie that rounding decides: the interiors are Figure 5's exactly.
+    let c = check(&student_lab(&Lab {
+        depth: DepthTest::Z,
+        ..Lab::handout(Shade::Flat)
+    }));
+    let f = c.fitted.as_ref().unwrap();
+    assert_eq!(f.hypothesis.figure(), 5);
+    assert_eq!(f.errors.interior_rmse, 0.0);
+    assert_eq!(c.remaining.summary(), "edges");
+    assert!(
+        c.remaining.total > 0 && c.remaining.total < 1000,
+        "{}",
+        c.remaining.total
     );
 }

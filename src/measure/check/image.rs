@@ -24,6 +24,10 @@ use crate::scene::cornell;
 use glam::Vec3;
 use std::fmt::Write as _;
 
+/// π as students who write it 3.14 have it in eq. 10.
+#[allow(clippy::approx_constant)]
+pub const PI_314: f32 = 3.14;
+
 /// A difference of more than this many 8-bit steps counts as a difference.
 pub const THRESHOLD: u8 = 2;
 
@@ -364,7 +368,7 @@ impl Shading {
     /// The power that multiplies the direct light per unit power computed with π.
     fn effective_power(self) -> f32 {
         if self.pi_314 {
-            self.power * (std::f32::consts::PI / 3.14)
+            self.power * (std::f32::consts::PI / PI_314)
         } else {
             self.power
         }
@@ -590,7 +594,7 @@ fn best_shading(m: &Measured, observed: &Frame, lit: bool, setup: &Setup) -> (Sh
         let slack = (interior / 2000).max(3);
         let mut chosen = (fitted, fitted_errors);
         let mut candidates = Vec::new();
-        let scale_pi = 3.14 / std::f32::consts::PI;
+        let scale_pi = PI_314 / std::f32::consts::PI;
         let nice_n = setup.indirect.unwrap_or(round_to(n, 2));
         let nice = |v: f32, decimals| setup.power.unwrap_or(round_to(v, decimals));
         for (pi_314, decimals) in [(true, 2), (true, 1), (false, 2), (false, 1)] {
@@ -832,7 +836,7 @@ fn where_off(f: &Fitted, observed: &Frame) -> Where {
             (name, k)
         })
         .collect();
-    surfaces.sort_by(|a, b| b.1.cmp(&a.1));
+    surfaces.sort_by_key(|s| std::cmp::Reverse(s.1));
     Where {
         total,
         edges,

@@ -216,7 +216,7 @@ impl RowsCheck {
                 return out;
             }
             Some(i) => {
-                let show = |r: Option<&Row>| r.map_or("(no row)".to_string(), |r| row_text(r));
+                let show = |r: Option<&Row>| r.map_or("(no row)".to_string(), row_text);
                 let _ = writeln!(
                     out,
                     "Your rows differ from the handout's: {} of {} rows (you printed {}); the first is row {}:",
