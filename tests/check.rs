@@ -788,3 +788,73 @@ fn z_instead_of_one_over_z_differs_only_where_surfaces_meet() {
         c.remaining.total
     );
 }
+
+/// The student screenshot of docs/check.md: light per pixel at power 5.1 with
+/// the light 0.15 nearer the back wall than the skeleton's, colours truncated, and
+/// the projection truncating the whole sum.
+fn page_example() -> Frame {
+    student_lab(&Lab {
+        power: 5.1,
+        truncate: true,
+        projection_sum: true,
+        light: Vec3::new(0.0, -0.5, -0.55),
+        ..Lab::handout(Shade::PerPixel)
+    })
+}
+
+/// docs/check/student.png and docs/check/student-heat.png are what the code
+/// makes now; `RASTERLAB_UPDATE_DOCS=1 cargo test --release --test check` rewrites
+/// them (then paste the two reports of `rasterlab check docs/check/student.png`
+/// with and without --fit-light into docs/check.md).
+#[test]
+fn the_check_pages_pictures_are_current() {
+    use rasterlab::app::check::{check_image_file, CheckOptions};
+    use rasterlab::app::image_io::{read_rgb_png, write_png};
+    let docs = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/check"));
+    let shot = docs.join("student.png");
+    let frame = page_example();
+    let update = std::env::var_os("RASTERLAB_UPDATE_DOCS").is_some();
+    if update {
+        std::fs::create_dir_all(docs).unwrap();
+        write_png(&frame, &shot).unwrap();
+    }
+    let (w, h, committed) = read_rgb_png(&shot).unwrap();
+    assert!(
+        (w, h) == (500, 500) && committed == frame.to_rgb8(),
+        "{} is stale",
+        shot.display()
+    );
+    let dir = temp_dir("check-page");
+    let options = CheckOptions {
+        out: Some(dir.to_path_buf()),
+        ..CheckOptions::default()
+    };
+    // Without --fit-light the shade differs inside (the heat map on the page);
+    // with it, the light, the power and both variants are found.
+    let (report, _) = check_image_file(&shot, &options).unwrap();
+    let f = report.fitted.as_ref().unwrap();
+    assert_eq!(f.variants(), ["truncated-colours"]);
+    assert_eq!(report.remaining.summary(), "everywhere");
+    let searched = CheckOptions {
+        fit_light: true,
+        ..CheckOptions::default()
+    };
+    let (report, _) = check_image_file(&shot, &searched).unwrap();
+    let f = report.fitted.as_ref().unwrap();
+    assert_eq!(
+        f.variants(),
+        ["projection-sum-truncated", "truncated-colours"]
+    );
+    assert_eq!(f.light, Vec3::new(0.0, -0.5, -0.55));
+    assert_eq!(f.shading.power, 5.1);
+    assert_eq!(report.remaining.summary(), "none");
+    let heat = dir.join("student-heat.png");
+    if update {
+        std::fs::copy(&heat, docs.join("student-heat.png")).unwrap();
+    }
+    assert_eq!(
+        read_rgb_png(&heat).unwrap(),
+        read_rgb_png(&docs.join("student-heat.png")).unwrap(),
+        "docs/check/student-heat.png is stale"
+    );
+}
