@@ -614,7 +614,7 @@ fn a_rows_report_names_the_first_differing_row_and_the_variant() {
     assert_eq!(
         report.lines().next().unwrap(),
         format!(
-            "Your rows differ from the handout's: {} of 30 rows (you printed 30); the first is row {}:",
+            "Your rows differ from the handout's in {} rows (the handout has 30, you printed 30); the first is row {}:",
             c.differing,
             first + 1
         )

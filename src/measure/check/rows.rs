@@ -180,6 +180,14 @@ pub fn check_rows(vertices: &[(i32, i32)], student: Vec<Row>) -> RowsCheck {
     }
 }
 
+fn plural(n: usize) -> &'static str {
+    if n == 1 {
+        ""
+    } else {
+        "s"
+    }
+}
+
 /// A variant in words.
 pub fn describe(v: RowsVariant) -> String {
     let mut words = Vec::new();
@@ -211,7 +219,8 @@ impl RowsCheck {
             None => {
                 let _ = writeln!(
                     out,
-                    "Your rows are the handout's ComputePolygonRows exactly ({n} rows)."
+                    "Your rows are the handout's ComputePolygonRows exactly ({n} row{}).",
+                    plural(n)
                 );
                 return out;
             }
@@ -219,8 +228,9 @@ impl RowsCheck {
                 let show = |r: Option<&Row>| r.map_or("(no row)".to_string(), row_text);
                 let _ = writeln!(
                     out,
-                    "Your rows differ from the handout's: {} of {} rows (you printed {}); the first is row {}:",
+                    "Your rows differ from the handout's in {} row{} (the handout has {}, you printed {}); the first is row {}:",
                     self.differing,
+                    plural(self.differing),
                     n,
                     self.student.len(),
                     i + 1
@@ -254,7 +264,7 @@ impl RowsCheck {
                     format!("{} (variant: {})", describe(v), v.names().join(", "))
                 },
                 d,
-                if d == 1 { "" } else { "s" },
+                plural(d),
                 if d == 1 { "s" } else { "" }
             );
         }
