@@ -59,6 +59,10 @@ struct Lab {
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Shade {
+    /// White vertices (section 2).
+    Points,
+    /// White edges (section 3).
+    Lines,
     Flat,
     PerVertex,
     PerPixel,
@@ -160,7 +164,7 @@ fn student_lab(lab: &Lab) -> Frame {
                     (fx as i32 + w / 2, fy as i32 + h / 2)
                 };
                 let q = match lab.shade {
-                    Shade::Flat => Vec3::ZERO,
+                    Shade::Points | Shade::Lines | Shade::Flat => Vec3::ZERO,
                     Shade::PerVertex => rho * (Vec3::splat(direct(v, t.normal)) + lab.indirect),
                     Shade::PerPixel => v,
                 };
@@ -174,6 +178,27 @@ fn student_lab(lab: &Lab) -> Frame {
                 }
             })
             .collect();
+        let mut put = |p: &Px| {
+            if (0..w).contains(&p.x) && (0..h).contains(&p.y) {
+                color[(p.y * w + p.x) as usize] = Vec3::ONE;
+            }
+        };
+        match lab.shade {
+            Shade::Points => {
+                corners.iter().for_each(&mut put);
+                continue;
+            }
+            Shade::Lines => {
+                for i in 0..3 {
+                    let (a, b) = (corners[i], corners[(i + 1) % 3]);
+                    let (dx, dy) = ((a.x - b.x).abs(), (a.y - b.y).abs());
+                    let n = if lab.dy_sampling { dy } else { dx.max(dy) } as usize + 1;
+                    student_interpolate(lab, a, b, n).iter().for_each(&mut put);
+                }
+                continue;
+            }
+            _ => {}
+        }
         // ComputePolygonRows
         let top = corners.iter().map(|p| p.y).min().unwrap();
         let bottom = corners.iter().map(|p| p.y).max().unwrap();
@@ -227,7 +252,7 @@ fn student_lab(lab: &Lab) -> Frame {
                 z_buffer[i] = p.z;
                 let q = if lab.perspective { p.q / p.zinv } else { p.q };
                 color[i] = match lab.shade {
-                    Shade::Flat => rho,
+                    Shade::Points | Shade::Lines | Shade::Flat => rho,
                     Shade::PerVertex => q,
                     Shade::PerPixel => rho * (Vec3::splat(direct(q, t.normal)) + lab.indirect),
                 };
@@ -317,7 +342,7 @@ fn recognised(lab: Lab, figure: u8, variants: &[&str], off: f64) {
         (figure, variants),
         "{lab:?}"
     );
-    if lab.shade != Shade::Flat {
+    if matches!(lab.shade, Shade::PerVertex | Shade::PerPixel) {
         assert!(
             (power - lab.power).abs() <= 0.01 * lab.power,
             "{lab:?}: P = {power}"
@@ -428,6 +453,42 @@ fn each_known_difference_is_named() {
         6,
         &["projection-sum-truncated", "rounding", "truncated-colours"],
         0.001,
+    );
+}
+
+#[test]
+fn points_and_lines_show_their_variants() {
+    let points = Lab::handout(Shade::Points);
+    let lines = Lab::handout(Shade::Lines);
+    recognised(points, 2, &[], 0.0);
+    recognised(lines, 3, &[], 0.0);
+    recognised(
+        Lab {
+            projection_sum: true,
+            ..points
+        },
+        2,
+        &["projection-sum-truncated"],
+        0.0,
+    );
+    recognised(
+        Lab {
+            dy_sampling: true,
+            ..lines
+        },
+        3,
+        &["dy-sampling"],
+        0.0,
+    );
+    recognised(
+        Lab {
+            rounding: true,
+            projection_sum: true,
+            ..lines
+        },
+        3,
+        &["projection-sum-truncated", "rounding"],
+        0.0,
     );
 }
 
