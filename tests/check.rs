@@ -568,7 +568,14 @@ fn unrelated_images_are_not_lab_3_images() {
         let q = |v: f32| ((v + grain).clamp(0.0, 1.0) * 255.0) as u32;
         *c = q(rgb[0]) << 16 | q(rgb[1]) << 8 | q(rgb[2]);
     }
-    for (name, frame) in [("noise", noisy), ("gradient", gradient), ("photo", photo)] {
+    // A program that draws nothing: every stage draws something.
+    let black = Frame::new(500, 500);
+    for (name, frame) in [
+        ("noise", noisy),
+        ("gradient", gradient),
+        ("photo", photo),
+        ("black", black),
+    ] {
         let c = check(&frame);
         assert!(
             c.fitted.is_none(),
