@@ -8,7 +8,8 @@
 mod common;
 use common::temp_dir;
 use glam::Vec3;
-use rasterlab::measure::check::image::{check_image, ImageCheck, Setup};
+use rasterlab::measure::check::check_image;
+use rasterlab::measure::check::image::{ImageCheck, Setup};
 use rasterlab::measure::check::rows::{check_rows, parse_rows, RowsVariant};
 use rasterlab::{cornell_box, Frame};
 use std::process::{Command, Output};

@@ -2,7 +2,8 @@
 //! checker of [`crate::measure::check`], and writing its report and heat map.
 
 use crate::app::image_io::{write_png, WriteError};
-use crate::measure::check::image::{check_image, ImageCheck, Setup};
+use crate::measure::check::check_image;
+use crate::measure::check::image::{ImageCheck, Setup};
 use crate::measure::check::rows::{check_rows, parse_rows, RowsCheck};
 use crate::measure::figure::StageName;
 use crate::measure::heat::heat_map_picture;

@@ -6,9 +6,15 @@
 //! - [`rows`]: `check rows`, a printed `ComputePolygonRows` against ours.
 //! - [`student`]: the variants built on the core (a rasterizer, and stages that
 //!   measure a pixel's surface and direct light).
-//! - [`image`]: `check IMAGE`, the stage, the fitted light and the variants.
+//! - [`image`]: `check IMAGE`'s hypotheses, what each draws, its errors and
+//!   where they are; [`fit`]: P and N, the variants and the light fitted, and
+//!   [`check_image`], the whole check; [`report`]: its words and JSON.
 
+pub mod fit;
 pub mod image;
+pub mod report;
 pub mod rows;
 pub mod student;
 pub mod walk;
+
+pub use fit::check_image;
