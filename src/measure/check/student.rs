@@ -140,7 +140,7 @@ pub const DIRECT_RANGE: f32 = 4.0;
 /// 24 bits: the render target keeps bytes, and this way it keeps the value to
 /// 2.4e-7 instead of 1/255.
 #[inline]
-fn encode(v: f32) -> Vec3 {
+pub fn encode(v: f32) -> Vec3 {
     let k = (v / DIRECT_RANGE * 16_777_216.0).clamp(0.0, 16_777_215.0) as u32;
     Vec3::new(
         (k >> 16) as f32 / 255.0,
