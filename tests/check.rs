@@ -834,7 +834,7 @@ fn the_command_writes_json_a_heat_map_and_the_expected_image() {
     let text = String::from_utf8(o.stdout).unwrap();
     assert_eq!(
         text.lines().next().unwrap(),
-        "Your image is the handout's Figure 7 at light power 5.1; colours are truncated to 8 bits instead of rounded. Every pixel matches within 1/255."
+        "Your image is the handout's Figure 7 (light per pixel) at light power 5.1; colours are truncated to 8 bits instead of rounded. Every pixel matches within 1/255."
     );
 }
 
@@ -925,5 +925,40 @@ fn the_check_pages_pictures_are_current() {
         read_rgb_png(&heat).unwrap(),
         read_rgb_png(&docs.join("student-heat.png")).unwrap(),
         "docs/check/student-heat.png is stale"
+    );
+}
+
+#[test]
+fn a_bmp_screenshot_of_another_size_is_read() {
+    let dir = temp_dir("check-bmp");
+    let shot = dir.join("lab.bmp");
+    let frame = student_lab(&Lab {
+        width: 400,
+        height: 300,
+        focal: 300.0,
+        power: 15.1,
+        perspective: false,
+        ..Lab::handout(Shade::PerPixel)
+    });
+    image::save_buffer(
+        &shot,
+        &frame.to_rgb8(),
+        400,
+        300,
+        image::ExtendedColorType::Rgb8,
+    )
+    .unwrap();
+    let o = rasterlab(&[
+        "check",
+        shot.to_str().unwrap(),
+        "--json",
+        "--size",
+        "400x300",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let json = String::from_utf8(o.stdout).unwrap();
+    assert!(
+        json.contains("\"width\":400,\"height\":300,\"lab3\":true,\"figure\":8,\"stage\":\"pixel-light\",\"light_power\":15.1,"),
+        "{json}"
     );
 }

@@ -21,6 +21,20 @@ pub fn three_digits(v: f32) -> String {
     }
 }
 
+/// What a figure of the handout shows, in a few words.
+pub fn figure_words(figure: u8) -> &'static str {
+    match figure {
+        2 => "the vertices as points",
+        3 => "the edges as lines",
+        4 => "filled triangles, no depth test",
+        5 => "filled triangles behind a depth buffer",
+        6 => "light per vertex",
+        7 => "light per pixel",
+        8 => "light per pixel, interpolated affinely: section 6.2's mistake",
+        _ => "not a figure of the handout",
+    }
+}
+
 /// A variant's meaning, in words.
 pub fn variant_words(name: &str) -> &'static str {
     match name {
@@ -64,7 +78,11 @@ impl ImageCheck {
         let h = f.hypothesis;
         let lit = h.lit();
         let variants = f.variants();
-        let mut first = format!("Your image is the handout's Figure {}", h.figure());
+        let mut first = format!(
+            "Your image is the handout's Figure {} ({})",
+            h.figure(),
+            figure_words(h.figure())
+        );
         if lit {
             let default = Shading::handout();
             let differs = |a: f32, b: f32| three_digits(a) != three_digits(b);
