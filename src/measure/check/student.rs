@@ -44,12 +44,17 @@ thread_local! {
     static GEOMETRY: Cell<Geometry> = Cell::new(Geometry::default());
 }
 
-/// Runs `draw` with [`StudentRaster`] drawing as `geometry` says, on this thread.
+/// Runs `draw` with [`StudentRaster`] drawing as `geometry` says, on this thread;
+/// the geometry before is restored afterwards, also if `draw` panics.
 pub fn with_geometry<T>(geometry: Geometry, draw: impl FnOnce() -> T) -> T {
-    let before = GEOMETRY.with(|g| g.replace(geometry));
-    let out = draw();
-    GEOMETRY.with(|g| g.set(before));
-    out
+    struct Restore(Geometry);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            GEOMETRY.with(|g| g.set(self.0));
+        }
+    }
+    let _restore = Restore(GEOMETRY.with(|g| g.replace(geometry)));
+    draw()
 }
 
 /// With [`DepthMode::Z`], what the rasterizer carries in place of 1/z:
@@ -220,6 +225,32 @@ impl<const DEPTH: bool> Stage for DirectPerVertex<DEPTH> {
 mod tests {
     use super::*;
     use crate::pipeline::target::pack;
+
+    #[test]
+    fn the_default_geometry_draws_the_handouts_figures() {
+        use crate::pipeline::{Camera, Depth, Perspective};
+        use crate::pipeline::{Frame, Light, Pipeline, PixelLight, Render, Wireframe};
+        let (mesh, camera) = (crate::scene::cornell_box(), Camera::handout(200, 150));
+        let uniforms = Uniforms {
+            light: Light::handout(),
+        };
+        fn both<S: Stage>(mesh: &crate::pipeline::Mesh, c: &Camera, u: &Uniforms) -> [Frame; 2] {
+            let (mut core, mut student) = (Frame::default(), Frame::default());
+            Pipeline::<S, Perspective>::new().render(mesh, c, u, &mut core);
+            with_geometry(Geometry::default(), || {
+                Pipeline::<S, Perspective, StudentRaster>::new().render(mesh, c, u, &mut student)
+            });
+            [core, student]
+        }
+        for [core, student] in [
+            both::<Wireframe>(&mesh, &camera, &uniforms),
+            both::<Depth>(&mesh, &camera, &uniforms),
+            both::<PixelLight>(&mesh, &camera, &uniforms),
+        ] {
+            assert!(core.color.iter().any(|&c| c != 0));
+            assert_eq!(core.color, student.color);
+        }
+    }
 
     #[test]
     fn encoded_values_survive_8_bit_packing() {
