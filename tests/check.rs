@@ -494,6 +494,22 @@ fn points_and_lines_show_their_variants() {
 }
 
 #[test]
+fn figure_4_is_the_depth_stage_without_its_depth_test() {
+    let frame = frame_of(&filled::draw().to_rgb8(), 500, 500);
+    let mut setup = Setup::handout(500, 500);
+    setup.stage = Some(rasterlab::StageName::Depth);
+    let c = check_image(&frame, &setup);
+    let f = c.fitted.as_ref().unwrap();
+    assert_eq!(
+        (f.hypothesis.figure(), f.variants()),
+        (5, vec!["no-depth-test"])
+    );
+    assert_eq!(f.errors.off, 0.0);
+    // Before the fit, against Figure 5: the short block's front is hidden there.
+    assert!(c.before.off > 0.005, "{}", c.before.off);
+}
+
+#[test]
 fn another_size_sets_the_screen_and_the_focal_length() {
     let lab = Lab {
         width: 320,

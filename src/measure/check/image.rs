@@ -176,10 +176,10 @@ impl Hypothesis {
                 out.push(with(Geometry { walk, ..g }));
             }
         }
-        // Without its depth test the depth stage is Figure 4, found as such.
+        // Without its depth test the depth stage draws Figure 4: found as such when
+        // the stage is not given, and as this variant of it with `--stage depth`.
         let depths: &[DepthMode] = match self.stage {
-            StageName::Depth => &[DepthMode::InverseZ, DepthMode::Z],
-            StageName::VertexLight | StageName::PixelLight => {
+            StageName::Depth | StageName::VertexLight | StageName::PixelLight => {
                 &[DepthMode::InverseZ, DepthMode::None, DepthMode::Z]
             }
             _ => &[],
