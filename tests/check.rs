@@ -978,3 +978,68 @@ fn a_bmp_screenshot_of_another_size_is_read() {
         "{json}"
     );
 }
+
+/// 24 labs with random sets of the differences (a fixed seed, so the same ones
+/// every run): each is recognised with exactly its variants and P within 1 %.
+#[test]
+#[allow(clippy::approx_constant)] // pi as 3.14 is one of the differences
+fn random_sets_of_differences_are_all_named() {
+    let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+    let mut failures = Vec::new();
+    for _ in 0..24 {
+        let mut r = |n: u32| noise(&mut seed) % n;
+        let shade = [Shade::Flat, Shade::PerVertex, Shade::PerPixel][r(3) as usize];
+        let mut lab = Lab::handout(shade);
+        lab.projection_sum = r(2) == 0;
+        lab.rounding = r(3) == 0;
+        lab.dy_sampling = r(3) == 0;
+        if shade == Shade::Flat {
+            if r(3) == 0 {
+                lab.depth = DepthTest::Painter;
+            }
+        } else {
+            lab.truncate = r(2) == 0;
+            lab.perspective = r(2) == 0;
+            lab.power = [1.1, 5.1, 9.1, 11.0, 14.1, 15.1][r(6) as usize];
+            if r(4) == 0 {
+                lab.pi = 3.14;
+            }
+            if r(4) == 0 {
+                lab.depth = DepthTest::Painter;
+            }
+        }
+        let mut want = Vec::new();
+        for (on, name) in [
+            (lab.projection_sum, "projection-sum-truncated"),
+            (lab.rounding, "rounding"),
+            (lab.dy_sampling, "dy-sampling"),
+            (
+                lab.depth == DepthTest::Painter && shade != Shade::Flat,
+                "no-depth-test",
+            ),
+            (
+                shade == Shade::PerVertex && lab.perspective,
+                "perspective-vertex-light",
+            ),
+            (lab.truncate, "truncated-colours"),
+            (lab.pi == 3.14, "pi-3.14"),
+        ] {
+            if on {
+                want.push(name);
+            }
+        }
+        let c = check(&student_lab(&lab));
+        let f = c.fitted.as_ref().expect("a lab 3 image");
+        let power_ok =
+            shade == Shade::Flat || (f.shading.power - lab.power).abs() <= 0.01 * lab.power;
+        if f.variants() != want || !power_ok || f.errors.off > 0.001 {
+            failures.push(format!(
+                "{lab:?}: {:?}, P {}, off {}",
+                f.variants(),
+                f.shading.power,
+                f.errors.off
+            ));
+        }
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+}
