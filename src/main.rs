@@ -542,10 +542,13 @@ struct CheckRowsArgs {
     /// - for standard input.
     #[arg(value_name = "FILE")]
     file: PathBuf,
-    /// The polygon's vertices as X,Y pixels, in order, as given to ComputePolygonRows.
-    #[arg(required = true, value_name = "X,Y", num_args = 1.., value_parser = parse::point,
-          allow_hyphen_values = true)]
+    /// The polygon's vertices as X,Y pixels, in order, as given to ComputePolygonRows;
+    /// a negative coordinate goes after `--` (`check rows FILE -- -3,4 ...`).
+    #[arg(required = true, value_name = "X,Y", num_args = 1.., value_parser = parse::point)]
     vertices: Vec<(i32, i32)>,
+    /// Print the result as one JSON object instead of words.
+    #[arg(long)]
+    json: bool,
 }
 
 /// `rasterlab check`: a screenshot, or with `rows` a rows printout.
@@ -557,6 +560,12 @@ fn check(a: &CheckArgs) -> Result<(), Failure> {
     };
     if let Some(CheckRows::Rows(r)) = &a.rows {
         let result = app::check::check_rows_file(&r.file, &r.vertices).map_err(failure)?;
+        if r.json {
+            return Ok(print_out(&format!(
+                "{}\n",
+                result.json(&r.file.display().to_string())
+            ))?);
+        }
         return Ok(print_out(&result.text())?);
     }
     let image = a

@@ -783,6 +783,15 @@ fn bad_input_is_a_one_line_error() {
             p("rows.txt")
         ),
     );
+    std::fs::write(p("one.txt"), "Start: (3,2). End: (3,2).\n").unwrap();
+    let o = rasterlab(&["check", "rows", &p("one.txt"), "3,2", "--json"]);
+    assert_eq!(
+        String::from_utf8_lossy(&o.stdout),
+        format!(
+            "{{\"file\":\"{}\",\"rows\":1,\"printed\":1,\"handout\":true,\"first_difference\":null,\"differing\":0,\"reproduced\":true,\"variants\":[]}}\n",
+            p("one.txt")
+        )
+    );
     one_line_error(
         &["check", "rows", &p("missing.txt"), "1,1", "2,2", "3,1"],
         1,

@@ -2,6 +2,7 @@
 //! handout's section 4 test program) against ours, and which known way of
 //! walking the edges reproduces it.
 
+use super::report::json_string;
 use super::walk::Walk;
 use crate::pipeline::interpolate::Pixel;
 use crate::pipeline::raster::rows::{compute_polygon_rows_by, Rows};
@@ -272,6 +273,43 @@ impl RowsCheck {
     }
 }
 
+impl RowsCheck {
+    /// The result as one JSON object: whether the rows are the handout's, the first
+    /// differing row (from 1), and the variants that reproduce them exactly (the
+    /// fewest changes first) or, when none does, the closest one.
+    pub fn json(&self, name: &str) -> String {
+        let names = |v: RowsVariant| {
+            let quoted: Vec<String> = v.names().iter().map(|n| json_string(n)).collect();
+            format!("[{}]", quoted.join(","))
+        };
+        let mut out = format!(
+            "{{\"file\":{},\"rows\":{},\"printed\":{},\"handout\":{},\"first_difference\":{},\"differing\":{}",
+            json_string(name),
+            self.handout.len(),
+            self.student.len(),
+            self.first_difference.is_none(),
+            self.first_difference
+                .map_or("null".to_string(), |i| (i + 1).to_string()),
+            self.differing
+        );
+        match (self.exact.first(), self.closest) {
+            (Some(&v), _) => {
+                let _ = write!(out, ",\"reproduced\":true,\"variants\":{}", names(v));
+            }
+            (None, Some((v, d))) => {
+                let _ = write!(
+                    out,
+                    ",\"reproduced\":false,\"variants\":{},\"still_differing\":{d}",
+                    names(v)
+                );
+            }
+            (None, None) => out.push_str(",\"reproduced\":false,\"variants\":[]"),
+        }
+        out.push('}');
+        out
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -284,6 +322,27 @@ mod tests {
         assert_eq!(check.first_difference, None);
         assert_eq!(check.handout.len(), 11);
         assert_eq!(check.exact[0], RowsVariant::default());
+    }
+
+    #[test]
+    fn the_json_says_which_variant_prints_the_rows() {
+        let vertices = [(3, 2), (40, 9), (17, 31)];
+        let rounding = RowsVariant {
+            walk: Walk {
+                rounding: true,
+                ..Walk::default()
+            },
+            exclusive_end: false,
+        };
+        let check = check_rows(&vertices, rounding.rows(&vertices));
+        assert_eq!(
+            check.json("mine.txt"),
+            "{\"file\":\"mine.txt\",\"rows\":30,\"printed\":30,\"handout\":false,\"first_difference\":1,\"differing\":23,\"reproduced\":true,\"variants\":[\"rounding\"]}"
+        );
+        let check = check_rows(&vertices, RowsVariant::default().rows(&vertices));
+        assert!(check
+            .json("-")
+            .contains("\"handout\":true,\"first_difference\":null"));
     }
 
     #[test]
