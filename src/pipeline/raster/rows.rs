@@ -111,23 +111,6 @@ pub fn compute_polygon_rows<V: Varying>(
     bounds: &Bounds,
     rows: &mut Rows<V>,
 ) {
-    compute_polygon_rows_by(vertices, bounds, rows, |a, b| {
-        Steps::new(a, b, line_pixels(&a, &b))
-    });
-}
-
-/// [`compute_polygon_rows`] with the pixels of each edge from `a` to `b` given by
-/// `edge` instead of the handout's `Interpolate`: for measuring what another way
-/// of walking the edges (rounding, fewer samples) does to the rows.
-pub fn compute_polygon_rows_by<V: Varying, E, I>(
-    vertices: &[Pixel<V>],
-    bounds: &Bounds,
-    rows: &mut Rows<V>,
-    edge: E,
-) where
-    E: Fn(Pixel<V>, Pixel<V>) -> I,
-    I: Iterator<Item = Pixel<V>>,
-{
     rows.left.clear();
     rows.right.clear();
     let Some(first) = vertices.first() else {
@@ -156,7 +139,7 @@ pub fn compute_polygon_rows_by<V: Varying, E, I>(
     let count = vertices.len();
     for i in 0..count {
         let (a, b) = (vertices[i], vertices[(i + 1) % count]);
-        for p in edge(a, b) {
+        for p in Steps::new(a, b, line_pixels(&a, &b)) {
             let row = p.y as i64 - top as i64;
             if row < 0 || row >= n as i64 {
                 continue;
