@@ -10,7 +10,8 @@
 //!   with tobj, chosen by a `--scene` spec; it also frames a scene other than the
 //!   box for the camera and the light.
 //! - [`measure`]: the ray-traced reference, error metrics, timing, `rasterlab
-//!   report` and `rasterlab stress`.
+//!   report`, `rasterlab stress` and `rasterlab check` (a student's screenshot or
+//!   rows printout explained).
 //! - [`app`]: the command line's work, image files, Figure 1 and the viewer.
 //!
 //! `docs/handout-map.md` maps each handout function to the item that implements it.

@@ -76,6 +76,14 @@ enum Command {
     ///
     /// Example: `rasterlab rows 10,5 5,10 15,15` prints the handout's 11 rows.
     Rows(RowsArgs),
+    /// Checks your own lab: which stage a screenshot shows, the light that
+    /// reproduces it, what was done differently from the handout, and where it
+    /// still differs.
+    ///
+    /// `rasterlab check shot.png` reads a PNG or BMP of any size; `rasterlab check
+    /// rows FILE 10,5 5,10 15,15` compares a printed ComputePolygonRows output
+    /// instead. docs/check.md shows a report.
+    Check(CheckArgs),
 }
 
 /// The view: scene, image size, camera and light. Vectors are X,Y,Z and may be
@@ -493,6 +501,128 @@ struct RowsArgs {
     vertices: Vec<(i32, i32)>,
 }
 
+#[derive(Args, Debug)]
+#[command(args_conflicts_with_subcommands = true, subcommand_negates_reqs = true)]
+struct CheckArgs {
+    #[command(subcommand)]
+    rows: Option<CheckRows>,
+    /// The screenshot: a PNG or BMP of any size (the size sets the camera's
+    /// screen; the focal length is the height unless --focal gives it).
+    #[arg(value_name = "IMAGE", required = true)]
+    image: Option<PathBuf>,
+    /// The stage the image shows [default: found from the image]: points,
+    /// wireframe, filled, depth, vertex-light, pixel-light.
+    #[arg(long, value_name = "STAGE", value_parser = parse::stage)]
+    stage: Option<StageName>,
+    /// The size the image must have, WIDTHxHEIGHT: a different one is an error.
+    #[arg(long, value_name = "WxH", value_parser = parse::size, allow_hyphen_values = true)]
+    size: Option<(u32, u32)>,
+    /// Focal length f in pixels [default: the image's height].
+    #[arg(long, value_name = "F", value_parser = parse::positive, allow_hyphen_values = true)]
+    focal: Option<f32>,
+    /// Camera position C [default: 0,0,-3.001].
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse::vec3, allow_hyphen_values = true)]
+    camera: Option<Vec3>,
+    /// Turn about the y-axis, in degrees; positive turns right.
+    #[arg(long, value_name = "DEG", default_value = "0", value_parser = parse::finite,
+          allow_hyphen_values = true)]
+    yaw: f32,
+    /// Tilt, in degrees; positive looks up.
+    #[arg(long, value_name = "DEG", default_value = "0", value_parser = parse::finite,
+          allow_hyphen_values = true)]
+    pitch: f32,
+    /// Light position [default: 0,-0.5,-0.7; the start of the search with --fit-light].
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse::vec3, allow_hyphen_values = true)]
+    light: Option<Vec3>,
+    /// Light power P of eq. 10 [default: fitted to the image].
+    #[arg(long, value_name = "P", value_parser = parse::finite, allow_hyphen_values = true)]
+    light_power: Option<f32>,
+    /// Indirect light N of eq. 11 [default: fitted to the image].
+    #[arg(long, value_name = "N", value_parser = parse::finite, allow_hyphen_values = true)]
+    indirect: Option<f32>,
+    /// Also search for the light's position (lit stages).
+    #[arg(long)]
+    fit_light: bool,
+    /// Folder for IMAGE-heat.png (where the image differs from the best
+    /// explanation) and IMAGE-expected.png (that explanation), created if missing.
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+    /// Print the report as one JSON object instead of words.
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(Subcommand, Debug)]
+enum CheckRows {
+    /// Compares a printed ComputePolygonRows output (section 4's test program) with
+    /// the handout's rows of the polygon, and names the variant that prints it.
+    ///
+    /// Example: `rasterlab check rows mine.txt 10,5 5,10 15,15`.
+    Rows(CheckRowsArgs),
+}
+
+#[derive(Args, Debug)]
+struct CheckRowsArgs {
+    /// The printout: one `Start: (x,y). End: (x,y).` per row, or all on one line;
+    /// - for standard input.
+    #[arg(value_name = "FILE")]
+    file: PathBuf,
+    /// The polygon's vertices as X,Y pixels, in order, as given to ComputePolygonRows;
+    /// a negative coordinate goes after `--` (`check rows FILE -- -3,4 ...`).
+    #[arg(required = true, value_name = "X,Y", num_args = 1.., value_parser = parse::point)]
+    vertices: Vec<(i32, i32)>,
+    /// Print the result as one JSON object instead of words.
+    #[arg(long)]
+    json: bool,
+}
+
+/// `rasterlab check`: a screenshot, or with `rows` a rows printout.
+fn check(a: &CheckArgs) -> Result<(), Failure> {
+    use app::check::CheckError;
+    let failure = |e: CheckError| match e {
+        CheckError::Usage(m) => Failure::Usage(m),
+        CheckError::Run(m) => Failure::Run(m),
+    };
+    if let Some(CheckRows::Rows(r)) = &a.rows {
+        let result = app::check::check_rows_file(&r.file, &r.vertices).map_err(failure)?;
+        if r.json {
+            return Ok(print_out(&format!(
+                "{}\n",
+                result.json(&r.file.display().to_string())
+            ))?);
+        }
+        return Ok(print_out(&result.text())?);
+    }
+    let image = a
+        .image
+        .as_ref()
+        .expect("clap requires IMAGE without a subcommand");
+    let options = app::check::CheckOptions {
+        stage: a.stage,
+        size: a.size,
+        focal: a.focal,
+        camera: a.camera,
+        yaw: a.yaw,
+        pitch: a.pitch,
+        light: a.light,
+        light_power: a.light_power,
+        indirect: a.indirect,
+        fit_light: a.fit_light,
+        out: a.out.clone(),
+    };
+    let (result, written) = app::check::check_image_file(image, &options).map_err(failure)?;
+    let name = image.display().to_string();
+    if a.json {
+        print_out(&format!("{}\n", result.json(&name)))?;
+    } else {
+        print_out(&result.text(&name))?;
+    }
+    for path in written {
+        eprintln!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
 /// Prints to standard output; a reader that has gone away (`| head`) ends the
 /// output quietly.
 fn print_out(text: &str) -> Result<(), String> {
@@ -675,6 +805,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             eprintln!("wrote {}", app::image_io::describe(&out));
             Ok(())
         }
+        Command::Check(a) => check(a),
         Command::Rows(a) => {
             print_out(&app::rows_text(&a.vertices))?;
             Ok(())

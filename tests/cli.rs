@@ -42,6 +42,7 @@ fn every_subcommand_explains_itself() {
         ("report", "error-vs-time.png"),
         ("stress", "hard cases"),
         ("view", "--keys"),
+        ("check", "screenshot"),
     ] {
         let o = rasterlab(&[cmd, "--help"]);
         assert!(o.status.success(), "{cmd}");

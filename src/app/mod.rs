@@ -2,6 +2,7 @@
 //! camera and light from the settings, draw, time and write files), image files,
 //! Figure 1, and the viewer.
 
+pub mod check;
 pub mod controls;
 pub mod explain;
 pub mod image_io;

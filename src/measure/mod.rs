@@ -3,6 +3,7 @@
 //! scenes; [`figure`] names the stages and figures they measure.
 
 pub mod bvh;
+pub mod check;
 pub mod figure;
 pub mod heat;
 pub mod metrics;

@@ -1,0 +1,148 @@
+//! `rasterlab check`: reading a student's screenshot or rows printout, running the
+//! checker of [`crate::measure::check`], and writing its report and heat map.
+
+use crate::app::image_io::{write_png, WriteError};
+use crate::measure::check::check_image;
+use crate::measure::check::image::{ImageCheck, Setup};
+use crate::measure::check::rows::{check_rows, parse_rows, RowsCheck};
+use crate::measure::figure::StageName;
+use crate::measure::heat::heat_map_picture;
+use crate::pipeline::Frame;
+use glam::Vec3;
+use std::path::{Path, PathBuf};
+
+/// Why a check could not be made: a usage error (an option that contradicts the
+/// input) or a failure (an input that cannot be read, a file that cannot be
+/// written). Each is one line naming the problem.
+#[derive(Debug, PartialEq)]
+pub enum CheckError {
+    Usage(String),
+    Run(String),
+}
+
+impl From<WriteError> for CheckError {
+    fn from(e: WriteError) -> Self {
+        CheckError::Run(e.to_string())
+    }
+}
+
+/// What `check IMAGE` was asked; `None` where the command line gave nothing.
+#[derive(Clone, Debug, Default)]
+pub struct CheckOptions {
+    pub stage: Option<StageName>,
+    /// The size the image must have.
+    pub size: Option<(u32, u32)>,
+    pub focal: Option<f32>,
+    pub camera: Option<Vec3>,
+    /// Degrees.
+    pub yaw: f32,
+    /// Degrees.
+    pub pitch: f32,
+    pub light: Option<Vec3>,
+    pub light_power: Option<f32>,
+    pub indirect: Option<f32>,
+    pub fit_light: bool,
+    /// Folder for the heat map and the image the best explanation draws.
+    pub out: Option<PathBuf>,
+}
+
+/// Reads a PNG or BMP screenshot as a frame (alpha is dropped).
+pub fn read_screenshot(path: &Path) -> Result<Frame, String> {
+    let img = image::ImageReader::open(path)
+        .map_err(|e| format!("cannot read {}: {e}", path.display()))?
+        .with_guessed_format()
+        .map_err(|e| format!("cannot read {}: {e}", path.display()))?
+        .decode()
+        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    let rgb = img.to_rgb8();
+    let mut frame = Frame::new(rgb.width(), rgb.height());
+    for (c, p) in frame.color.iter_mut().zip(rgb.pixels()) {
+        *c = (p[0] as u32) << 16 | (p[1] as u32) << 8 | p[2] as u32;
+    }
+    Ok(frame)
+}
+
+/// The largest side checked: a screenshot is a window, and each hypothesis draws
+/// several frames of its size.
+pub const MAX_CHECK_SIDE: u32 = 4096;
+
+/// `check IMAGE`: the report and the files written into `options.out`.
+pub fn check_image_file(
+    path: &Path,
+    options: &CheckOptions,
+) -> Result<(ImageCheck, Vec<PathBuf>), CheckError> {
+    let observed = read_screenshot(path).map_err(CheckError::Run)?;
+    let (w, h) = (observed.width, observed.height);
+    if let Some((sw, sh)) = options.size {
+        if (sw, sh) != (w, h) {
+            return Err(CheckError::Usage(format!(
+                "{} is {w}x{h}, not the {sw}x{sh} --size gives",
+                path.display()
+            )));
+        }
+    }
+    if w > MAX_CHECK_SIDE || h > MAX_CHECK_SIDE {
+        return Err(CheckError::Run(format!(
+            "{} is {w}x{h}: too large for a screenshot of the lab (at most {MAX_CHECK_SIDE} pixels a side)",
+            path.display()
+        )));
+    }
+    let mut setup = Setup::handout(w, h);
+    setup.stage = options.stage;
+    if let Some(f) = options.focal {
+        setup.camera.focal = f;
+    }
+    if let Some(c) = options.camera {
+        setup.camera.position = c;
+    }
+    setup.camera.yaw = options.yaw.to_radians();
+    setup.camera.pitch = options.pitch.to_radians();
+    if let Some(l) = options.light {
+        setup.light = l;
+    }
+    setup.power = options.light_power;
+    setup.indirect = options.indirect;
+    setup.fit_light = options.fit_light;
+    let check = check_image(&observed, &setup);
+    let mut written = Vec::new();
+    if let Some(dir) = &options.out {
+        std::fs::create_dir_all(dir)
+            .map_err(|e| CheckError::Run(format!("cannot write {}: {e}", dir.display())))?;
+        let stem = path
+            .file_stem()
+            .map_or("image".into(), |s| s.to_string_lossy().into_owned());
+        let title = match &check.fitted {
+            Some(f) => format!("{stem} against Figure {} as fitted", f.hypothesis.figure()),
+            None => format!("{stem}: not a lab 3 image; the closest stage"),
+        };
+        let heat = heat_map_picture(&observed, &check.expected, &title)
+            .expect("the expected image has the screenshot's size");
+        let heat_path = dir.join(format!("{stem}-heat.png"));
+        write_png(&heat, &heat_path)?;
+        let expected_path = dir.join(format!("{stem}-expected.png"));
+        write_png(&check.expected, &expected_path)?;
+        written.extend([heat_path, expected_path]);
+    }
+    Ok((check, written))
+}
+
+/// `check rows FILE X,Y ...`: reads the printout (`-` for standard input) and
+/// compares it with the polygon's rows.
+pub fn check_rows_file(path: &Path, vertices: &[(i32, i32)]) -> Result<RowsCheck, CheckError> {
+    let text = if path.as_os_str() == "-" {
+        let mut s = String::new();
+        std::io::Read::read_to_string(&mut std::io::stdin(), &mut s)
+            .map_err(|e| CheckError::Run(format!("cannot read standard input: {e}")))?;
+        s
+    } else {
+        std::fs::read_to_string(path)
+            .map_err(|e| CheckError::Run(format!("cannot read {}: {e}", path.display())))?
+    };
+    let name = if path.as_os_str() == "-" {
+        "standard input".to_string()
+    } else {
+        path.display().to_string()
+    };
+    let rows = parse_rows(&text).map_err(|e| CheckError::Run(format!("{name}: {e}")))?;
+    Ok(check_rows(vertices, rows))
+}

@@ -1,0 +1,469 @@
+//! Fitting a hypothesis to a screenshot: P and N by least squares, the plain
+//! values and π as 3.14 preferred when they match as well, the variants one
+//! change at a time, and the light's position by a pattern search; and
+//! [`check_image`], which runs them.
+
+use super::image::{
+    direct_pass, errors, largest_difference, measure, predict, predicted, where_off, Errors,
+    Fitted, Hypothesis, ImageCheck, Measured, Setup, Shading, LAB3_SHARE, NONE, PI_314, THRESHOLD,
+};
+use crate::measure::figure::StageName;
+use crate::pipeline::target::unpack;
+use crate::pipeline::Frame;
+use glam::Vec3;
+
+/// Least squares for P and N over the interior pixels' unclamped channels:
+/// `(observed + offset) / 255 = ρ d P + ρ N`, the offset 1/2 for truncated
+/// colours. Two passes: the second leaves out what the first misses by more than
+/// 3 steps (an edge the hypothesis places differently, a highlight clamped).
+pub(super) fn fit_light(
+    m: &Measured,
+    observed: &Frame,
+    truncated: bool,
+    power: Option<f32>,
+    indirect: Option<f32>,
+    stride: usize,
+) -> (f32, f32) {
+    let offset = if truncated { 0.5 } else { 0.0 };
+    let handout = Shading::handout();
+    let mut estimate: Option<(f64, f64)> = None;
+    for _ in 0..2 {
+        let (mut saa, mut sab, mut sbb, mut say, mut sby) = (0.0, 0.0, 0.0, 0.0, 0.0);
+        for i in (0..observed.color.len()).step_by(stride) {
+            let s = m.surface[i];
+            if !m.interior[i] || s == NONE {
+                continue;
+            }
+            let rho = m.surfaces[s as usize].0.to_array();
+            let o = unpack(observed.color[i]);
+            for k in 0..3 {
+                if o[k] == 0 || o[k] == 255 {
+                    continue; // clamped: says only "at least" or "at most"
+                }
+                let a = rho[k] as f64 * m.direct[i] as f64;
+                let b = rho[k] as f64;
+                let y = (o[k] as f64 + offset) / 255.0;
+                if let Some((p, n)) = estimate {
+                    if ((a * p + b * n - y) * 255.0).abs() > 3.0 {
+                        continue;
+                    }
+                }
+                saa += a * a;
+                sab += a * b;
+                sbb += b * b;
+                say += a * y;
+                sby += b * y;
+            }
+        }
+        let solved = match (power, indirect) {
+            (Some(p), Some(n)) => Some((p as f64, n as f64)),
+            (Some(p), None) => (sbb > 0.0).then(|| (p as f64, (sby - p as f64 * sab) / sbb)),
+            (None, Some(n)) => (saa > 0.0).then(|| ((say - n as f64 * sab) / saa, n as f64)),
+            (None, None) => {
+                let det = saa * sbb - sab * sab;
+                (det.abs() > 1e-12 * (saa * sbb).max(1e-300))
+                    .then(|| ((say * sbb - sby * sab) / det, (sby * saa - say * sab) / det))
+            }
+        };
+        match solved {
+            Some(s) => estimate = Some(s),
+            None => break,
+        }
+    }
+    let (p, n) = estimate.unwrap_or((handout.power as f64, handout.indirect as f64));
+    (p as f32, n as f32)
+}
+
+/// `v` rounded to `decimals` places.
+fn round_to(v: f32, decimals: i32) -> f32 {
+    let s = 10f32.powi(decimals);
+    (v * s).round() / s
+}
+
+/// The shading that best explains `observed` under `m`: each packing, P and N
+/// fitted, then the plain values nearby (P to one or two decimals, N to two,
+/// and the same with π as 3.14) preferred when they match as many pixels.
+pub(super) fn best_shading(
+    m: &Measured,
+    observed: &Frame,
+    lit: bool,
+    setup: &Setup,
+) -> (Shading, Errors) {
+    if !lit {
+        let s = Shading::handout();
+        return (s, errors(m, observed, false, s));
+    }
+    let mut best: Option<(Shading, Errors)> = None;
+    for truncated in [false, true] {
+        let (p, n) = fit_light(m, observed, truncated, setup.power, setup.indirect, 1);
+        let fitted = Shading {
+            power: p,
+            indirect: n,
+            pi_314: false,
+            truncated,
+        };
+        let fitted_errors = errors(m, observed, true, fitted);
+        let interior = m.interior.iter().filter(|&&b| b).count();
+        // "As many": within 0.05 % of the interior, far less than the share a
+        // slightly wrong P or π costs (a few percent) and more than the pixels a
+        // fit of 8-bit data can move.
+        let slack = (interior / 2000).max(3);
+        let mut chosen = (fitted, fitted_errors);
+        let mut candidates = Vec::new();
+        let scale_pi = PI_314 / std::f32::consts::PI;
+        let nice_n = setup.indirect.unwrap_or(round_to(n, 2));
+        let nice = |v: f32, decimals| setup.power.unwrap_or(round_to(v, decimals));
+        for (pi_314, decimals) in [(true, 2), (true, 1), (false, 2), (false, 1)] {
+            let power = if pi_314 { p * scale_pi } else { p };
+            candidates.push(Shading {
+                power: nice(power, decimals),
+                indirect: nice_n,
+                pi_314,
+                truncated,
+            });
+        }
+        // Later candidates are plainer; each one wins if it matches as many pixels.
+        let mut best_exact = fitted_errors.exact;
+        for c in candidates {
+            let e = errors(m, observed, true, c);
+            best_exact = best_exact.max(e.exact);
+            if e.exact + slack >= best_exact && e.exact + slack >= chosen.1.exact {
+                chosen = (c, e);
+            }
+        }
+        let replace = match &best {
+            None => true,
+            Some((_, e)) => chosen.1.exact > e.exact + slack,
+        };
+        if replace {
+            best = Some(chosen);
+        }
+    }
+    best.expect("two packings tried")
+}
+
+/// `h` with P and N fitted for rounded and for truncated colours, unless the
+/// setup fixes them, and the better kept: enough to rank hypotheses and light
+/// positions. (The plain values and π come later, in [`best_shading`].)
+pub(super) fn quick_fit(h: Hypothesis, observed: &Frame, setup: &Setup, light: Vec3) -> Fitted {
+    fitted(
+        h,
+        measure(h, &setup.mesh, &setup.camera, light),
+        observed,
+        setup,
+        light,
+    )
+}
+
+/// [`quick_fit`] of what has been measured.
+fn fitted(
+    h: Hypothesis,
+    measured: Measured,
+    observed: &Frame,
+    setup: &Setup,
+    light: Vec3,
+) -> Fitted {
+    let mut best: Option<(Shading, Errors)> = None;
+    for truncated in [false, true] {
+        if !h.lit() && truncated {
+            continue;
+        }
+        let shading = if h.lit() {
+            let (power, indirect) = fit_light(
+                &measured,
+                observed,
+                truncated,
+                setup.power,
+                setup.indirect,
+                1,
+            );
+            Shading {
+                power,
+                indirect,
+                truncated,
+                ..Shading::handout()
+            }
+        } else {
+            Shading::handout()
+        };
+        let e = errors(&measured, observed, h.lit(), shading);
+        if best.is_none_or(|(_, b)| e.interior_rmse < b.interior_rmse) {
+            best = Some((shading, e));
+        }
+    }
+    let (shading, errors) = best.expect("one packing tried");
+    Fitted {
+        hypothesis: h,
+        shading,
+        light,
+        errors,
+        measured,
+    }
+}
+
+/// `f` with the light at `light`: only the direct light is drawn again, since
+/// which surface each pixel shows does not depend on the light.
+pub(super) fn relit(f: &Fitted, observed: &Frame, setup: &Setup, light: Vec3) -> Fitted {
+    let mut measured = f.measured.clone();
+    measured.direct = direct_pass(f.hypothesis, &setup.mesh, &setup.camera, light);
+    fitted(f.hypothesis, measured, observed, setup, light)
+}
+
+/// The best of `hypotheses`.
+pub(super) fn best_of(
+    hypotheses: &[Hypothesis],
+    observed: &Frame,
+    setup: &Setup,
+    light: Vec3,
+) -> Fitted {
+    let mut best: Option<Fitted> = None;
+    for &h in hypotheses {
+        let f = quick_fit(h, observed, setup, light);
+        if best.as_ref().is_none_or(|b| f.better_than(b)) {
+            best = Some(f);
+        }
+    }
+    best.expect("at least one hypothesis")
+}
+
+/// How many pixels `candidate` explains better than `current`, and worse: of the
+/// pixels where their predictions differ by more than [`THRESHOLD`], those where
+/// it is nearer the image, and those where it is farther.
+fn explains(current: &Fitted, candidate: &Fitted, observed: &Frame) -> (usize, usize) {
+    let (mut better, mut worse) = (0, 0);
+    for (i, &o) in observed.color.iter().enumerate() {
+        let a = predict(
+            &current.measured,
+            i,
+            current.hypothesis.lit(),
+            current.shading,
+        );
+        let b = predict(
+            &candidate.measured,
+            i,
+            candidate.hypothesis.lit(),
+            candidate.shading,
+        );
+        if a == b {
+            continue;
+        }
+        let (da, db) = (largest_difference(a, o), largest_difference(b, o));
+        if da.abs_diff(db) <= THRESHOLD {
+            continue;
+        }
+        better += (db < da) as usize;
+        worse += (db > da) as usize;
+    }
+    (better, worse)
+}
+
+/// From `start`, one change at a time while a change explains the image better.
+/// The variants leave separate traces (left and top edges, the rows' ends,
+/// occlusions, the shade inside), so each one found improves the match on its own.
+/// A change is taken only if it explains at least 10 pixels better and three
+/// times as many as it explains worse: the right variant explains nearly all the
+/// pixels it changes, while with something else wrong (a light elsewhere) a
+/// wrong one that happens to lower the error does barely better than chance.
+pub(super) fn climb(start: Fitted, observed: &Frame, setup: &Setup) -> Fitted {
+    let mut best = start;
+    loop {
+        let mut next: Option<(Fitted, usize)> = None;
+        for h in best.hypothesis.neighbours() {
+            let mut f = quick_fit(h, observed, setup, best.light);
+            if setup.fit_light && h.lit() {
+                // A variant that moves the pixels moves the light that fits
+                // them best: each is judged with the light fitted to it.
+                f = search_light(observed, setup, f, 0.02, 40);
+            }
+            let (better, worse) = explains(&best, &f, observed);
+            let gain = better.saturating_sub(worse);
+            if better >= 10 && better >= 3 * worse && next.as_ref().is_none_or(|(_, g)| gain > *g) {
+                next = Some((f, gain));
+            }
+        }
+        match next {
+            Some((f, _)) => best = f,
+            None => return best,
+        }
+    }
+}
+
+/// Every [`LIGHT_STRIDE`]th pixel is enough to place the light: the interiors
+/// of 500 x 500 screenshot still give 40 000 of them.
+const LIGHT_STRIDE: usize = 4;
+
+/// How well the light at `light` explains the interiors under `shapes`' surfaces
+/// and packing, P and N fitted: the interior RMSE over every [`LIGHT_STRIDE`]th pixel.
+fn light_score(shapes: &Fitted, observed: &Frame, setup: &Setup, light: Vec3) -> f64 {
+    let mut m = shapes.measured.clone();
+    m.direct = direct_pass(shapes.hypothesis, &setup.mesh, &setup.camera, light);
+    let truncated = shapes.shading.truncated;
+    let (power, indirect) = fit_light(
+        &m,
+        observed,
+        truncated,
+        setup.power,
+        setup.indirect,
+        LIGHT_STRIDE,
+    );
+    let shading = Shading {
+        power,
+        indirect,
+        truncated,
+        ..Shading::handout()
+    };
+    let (mut sum, mut count) = (0u64, 0u64);
+    for i in (0..observed.color.len()).step_by(LIGHT_STRIDE) {
+        if !m.interior[i] {
+            continue;
+        }
+        let (a, b) = (
+            unpack(predict(&m, i, true, shading)),
+            unpack(observed.color[i]),
+        );
+        for k in 0..3 {
+            let e = a[k].abs_diff(b[k]) as u64;
+            sum += e * e;
+        }
+        count += 3;
+    }
+    if count == 0 {
+        f64::INFINITY
+    } else {
+        (sum as f64 / count as f64).sqrt()
+    }
+}
+
+/// The light's position by Hooke and Jeeves' pattern search: steps along each
+/// axis from `first_step` down to 0.0002, at most `max_tries` positions, and
+/// after each success a jump along the way the light moved, which follows the
+/// long valley a brighter light farther away makes with a dimmer one nearer. P
+/// and N are fitted at each position tried.
+pub(super) fn search_light(
+    observed: &Frame,
+    setup: &Setup,
+    start: Fitted,
+    first_step: f32,
+    max_tries: usize,
+) -> Fitted {
+    let mut tries = 0;
+    let mut score = |light: Vec3| {
+        tries += 1;
+        light_score(&start, observed, setup, light)
+    };
+    // The best of `from` and its neighbours `step` away along each axis.
+    let explore = |from: (Vec3, f64), step: f32, score: &mut dyn FnMut(Vec3) -> f64| {
+        let mut best = from;
+        for axis in [Vec3::X, Vec3::Y, Vec3::Z] {
+            for sign in [1.0, -1.0] {
+                let light = best.0 + axis * step * sign;
+                let e = score(light);
+                if e < best.1 - 1e-9 {
+                    best = (light, e);
+                    break;
+                }
+            }
+        }
+        best
+    };
+    let first = start.light;
+    let mut base = (first, score(first));
+    let mut step = first_step;
+    let mut budget = max_tries;
+    while step >= 2e-4 && budget > 0 {
+        let mut next = explore(base, step, &mut score);
+        budget = budget.saturating_sub(6);
+        if next.1 >= base.1 - 1e-9 {
+            step /= 2.0;
+            continue;
+        }
+        // Jump on along the way the light moved while that keeps helping.
+        loop {
+            let jump = next.0 * 2.0 - base.0;
+            base = next;
+            let jumped = (jump, score(jump));
+            let beyond = explore(jumped, step, &mut score);
+            budget = budget.saturating_sub(7);
+            if beyond.1 < base.1 - 1e-9 && budget > 0 {
+                next = beyond;
+            } else {
+                break;
+            }
+        }
+    }
+    if base.0 == start.light {
+        return start;
+    }
+    relit(&start, observed, setup, base.0)
+}
+
+/// Checks `observed` against every hypothesis `setup` allows.
+pub fn check_image(observed: &Frame, setup: &Setup) -> ImageCheck {
+    let light = setup.light;
+    let stages: Vec<StageName> = match setup.stage {
+        Some(s) => vec![s],
+        None => StageName::ALL.to_vec(),
+    };
+    // First the stage (each as the handout draws it, both interpolations for the
+    // lit ones), then every variant of that stage.
+    let mut first = Vec::new();
+    for &s in &stages {
+        first.push(Hypothesis::handout(s));
+        if s.interpolates() {
+            first.push(Hypothesis {
+                affine: !s.affine_by_default(),
+                ..Hypothesis::handout(s)
+            });
+        }
+    }
+    let mut best = best_of(&first, observed, setup, light);
+    // The light first: with it elsewhere, every variant's trace is hidden under
+    // the difference in shade. Then the variants, each with the light refitted.
+    let search = setup.fit_light && best.hypothesis.lit();
+    if search {
+        best = search_light(observed, setup, best, 0.1, 300);
+    }
+    best = climb(best, observed, setup);
+    if search {
+        // A position with two decimals, as people write them, wins if it explains
+        // the interiors as well (within 0.02 of a step).
+        let plain = (best.light * 100.0).round() / 100.0;
+        let snapped = relit(&best, observed, setup, plain);
+        if snapped.errors.interior_rmse <= best.errors.interior_rmse + 0.02 {
+            best = snapped;
+        }
+    }
+    let (shading, fitted_errors) =
+        best_shading(&best.measured, observed, best.hypothesis.lit(), setup);
+    best.shading = shading;
+    best.errors = fitted_errors;
+    let stage = best.hypothesis.stage;
+    let handout = Hypothesis {
+        affine: if stage == StageName::PixelLight {
+            best.hypothesis.affine
+        } else {
+            Hypothesis::handout(stage).affine
+        },
+        ..Hypothesis::handout(stage)
+    };
+    let handout_measured = measure(handout, &setup.mesh, &setup.camera, setup.light);
+    let before = errors(
+        &handout_measured,
+        observed,
+        handout.lit(),
+        Shading::handout(),
+    );
+    let remaining = where_off(&best, observed);
+    let expected = predicted(&best.measured, best.hypothesis.lit(), best.shading);
+    let lab3 = best.errors.near >= LAB3_SHARE && best.errors.near_drawn >= LAB3_SHARE;
+    ImageCheck {
+        width: observed.width,
+        height: observed.height,
+        fitted: lab3.then(|| best.clone()),
+        closest: best,
+        before,
+        remaining,
+        expected,
+        light_searched: setup.fit_light,
+    }
+}

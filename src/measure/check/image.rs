@@ -1,0 +1,621 @@
+//! `rasterlab check IMAGE`: which stage a screenshot shows, the light's power and
+//! the indirect light that reproduce it, which known differences from the
+//! handout it has, and where it still differs.
+//!
+//! Each hypothesis (a stage, its interpolation and a [`Geometry`]) is drawn through
+//! the core once per pass: what surface each pixel shows, and for the lit stages
+//! the direct light per unit power there. P and N enter eq. 10 and 11 linearly,
+//! `colour = 255 ρ (P d + N)`, so they follow from least squares over the surface
+//! interiors (in [`super::fit`]); the colour is then packed to 8 bits by rounding
+//! or by truncating and compared with the screenshot.
+
+use super::student::{
+    decode, with_geometry, DepthMode, DirectPerPixel, DirectPerVertex, Geometry, Shows,
+    StudentRaster,
+};
+use super::walk::Walk;
+use crate::measure::figure::StageName;
+use crate::pipeline::interpolate::{Affine, Interpolation, Perspective};
+use crate::pipeline::target::{pack, unpack};
+use crate::pipeline::{
+    Camera, Frame, Light, Mesh, Pipeline, Points, Render, Stage, Uniforms, Wireframe,
+};
+use crate::scene::cornell;
+use glam::Vec3;
+
+/// π as students who write it 3.14 have it in eq. 10.
+#[allow(clippy::approx_constant)]
+pub const PI_314: f32 = 3.14;
+
+/// A difference of more than this many 8-bit steps counts as a difference.
+pub const THRESHOLD: u8 = 2;
+
+/// The best hypothesis must get at least this share of the pixels within
+/// [`LAB3_TOLERANCE`] steps, and as large a share of the pixels it draws, to be
+/// called a lab 3 image. Screenshots of the lab get over 90 % of both, even with
+/// the light elsewhere and not searched for (94 % for docs/check.md's example),
+/// since their differences are edges and a shade; noise and a gradient get 2 %
+/// at most, and a black image 0 % of the pixels any stage draws, since the box's
+/// surfaces, black background and colours must all be where the stage puts
+/// them. Half is far from both.
+pub const LAB3_SHARE: f64 = 0.5;
+
+/// See [`LAB3_SHARE`]: loose enough for a light moved a little without `--fit-light`.
+pub const LAB3_TOLERANCE: u8 = 16;
+
+/// What to check an image against.
+#[derive(Clone, Debug)]
+pub struct Setup {
+    pub mesh: Mesh,
+    pub camera: Camera,
+    /// Where the light is, unless `fit_light` searches for it.
+    pub light: Vec3,
+    /// Fixed light power P instead of fitted.
+    pub power: Option<f32>,
+    /// Fixed indirect light N instead of fitted.
+    pub indirect: Option<f32>,
+    pub fit_light: bool,
+    /// The stage, when known; otherwise every stage is tried.
+    pub stage: Option<StageName>,
+}
+
+impl Setup {
+    /// The handout's box seen as the skeleton sees it, on an image `width` x
+    /// `height`: the camera at (0, 0, -3.001) and, since the handout sets the focal
+    /// length to the screen's size, f = the height.
+    pub fn handout(width: u32, height: u32) -> Setup {
+        let mut camera = Camera::handout(width, height);
+        camera.focal = height as f32;
+        Setup {
+            mesh: cornell::cornell_box(),
+            camera,
+            light: Light::handout().position,
+            power: None,
+            indirect: None,
+            fit_light: false,
+            stage: None,
+        }
+    }
+}
+
+/// A stage, drawn a way: one explanation of an image, before its light is fitted.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Hypothesis {
+    pub stage: StageName,
+    /// The lit stages' interpolation: affine (linear on the screen) or perspective-correct.
+    pub affine: bool,
+    pub geometry: Geometry,
+}
+
+impl Hypothesis {
+    /// The stage as the handout draws it.
+    pub fn handout(stage: StageName) -> Hypothesis {
+        Hypothesis {
+            stage,
+            affine: stage.affine_by_default(),
+            geometry: Geometry {
+                // Section 4 fills without a depth buffer; section 5 adds it.
+                depth: if stage == StageName::Filled {
+                    DepthMode::None
+                } else {
+                    DepthMode::InverseZ
+                },
+                ..Geometry::default()
+            },
+        }
+    }
+
+    /// The handout's figure number this hypothesis draws, or a variation of.
+    pub fn figure(self) -> u8 {
+        match self.stage {
+            StageName::Points => 2,
+            StageName::Wireframe => 3,
+            StageName::Filled => 4,
+            StageName::Depth => 5,
+            StageName::VertexLight => 6,
+            StageName::PixelLight if self.affine => 8,
+            StageName::PixelLight => 7,
+        }
+    }
+
+    pub fn lit(self) -> bool {
+        self.stage.interpolates()
+    }
+
+    /// Whether the stage fills polygons with a depth test by default.
+    fn tests_depth(self) -> bool {
+        self.stage >= StageName::Depth
+    }
+
+    /// The variants of this hypothesis' geometry and interpolation, by name.
+    pub fn variants(self) -> Vec<&'static str> {
+        let g = self.geometry;
+        let mut names = Vec::new();
+        if g.projection_sum {
+            names.push("projection-sum-truncated");
+        }
+        names.extend(g.walk.names());
+        match g.depth {
+            _ if !self.tests_depth() => {}
+            DepthMode::InverseZ => {}
+            DepthMode::None => names.push("no-depth-test"),
+            DepthMode::Z => names.push("z-interpolated"),
+        }
+        if self.stage == StageName::VertexLight && !self.affine {
+            names.push("perspective-vertex-light");
+        }
+        names
+    }
+
+    /// Every hypothesis one change away: the projection, each choice of the
+    /// edge walk, the depth test, and the lit stages' interpolation.
+    pub fn neighbours(self) -> Vec<Hypothesis> {
+        let mut out = Vec::new();
+        let g = self.geometry;
+        let with = |geometry: Geometry| Hypothesis { geometry, ..self };
+        out.push(with(Geometry {
+            projection_sum: !g.projection_sum,
+            ..g
+        }));
+        if self.stage != StageName::Points {
+            let w = g.walk;
+            for walk in [
+                Walk {
+                    rounding: !w.rounding,
+                    ..w
+                },
+                Walk {
+                    dy_sampling: !w.dy_sampling,
+                    ..w
+                },
+                Walk {
+                    step_over_n: !w.step_over_n,
+                    ..w
+                },
+            ] {
+                out.push(with(Geometry { walk, ..g }));
+            }
+        }
+        // Without its depth test the depth stage draws Figure 4: found as such when
+        // the stage is not given, and as this variant of it with `--stage depth`.
+        let depths: &[DepthMode] = match self.stage {
+            StageName::Depth | StageName::VertexLight | StageName::PixelLight => {
+                &[DepthMode::InverseZ, DepthMode::None, DepthMode::Z]
+            }
+            _ => &[],
+        };
+        for &depth in depths {
+            if depth != g.depth {
+                out.push(with(Geometry { depth, ..g }));
+            }
+        }
+        if self.lit() {
+            out.push(Hypothesis {
+                affine: !self.affine,
+                ..self
+            });
+        }
+        // z carried in place of 1/z breaks the division by 1/z that
+        // perspective-correct interpolation needs: tried with affine only.
+        out.retain(|h| !(h.geometry.depth == DepthMode::Z && h.lit() && !h.affine));
+        out
+    }
+}
+
+/// No surface: the background.
+pub(super) const NONE: u16 = u16::MAX;
+
+/// What a hypothesis draws at each pixel, before the light is known.
+#[derive(Clone, Debug)]
+pub struct Measured {
+    pub width: u32,
+    pub height: u32,
+    /// The surface each pixel shows (an index into `surfaces`), [`NONE`] for none.
+    pub(super) surface: Vec<u16>,
+    /// Per surface: its reflectance ρ and normal.
+    pub(super) surfaces: Vec<(Vec3, Vec3)>,
+    /// The direct light per unit power (eq. 10 with P = 1); lit stages only.
+    pub(super) direct: Vec<f32>,
+    /// Interior pixels: the surface's own, 2 pixels from any other.
+    pub(super) interior: Vec<bool>,
+}
+
+fn draw<S: Stage, I: Interpolation>(mesh: &Mesh, camera: &Camera, uniforms: &Uniforms) -> Frame {
+    let mut frame = Frame::default();
+    Pipeline::<S, I, StudentRaster>::new().render(mesh, camera, uniforms, &mut frame);
+    frame
+}
+
+/// The light with power 1 and no indirect light: what the lit passes draw with.
+fn unit_light(position: Vec3) -> Uniforms {
+    Uniforms {
+        light: Light {
+            position,
+            power: Vec3::ONE,
+            indirect: Vec3::ZERO,
+        },
+    }
+}
+
+/// The direct light per unit power at each pixel, as `h` interpolates it.
+pub(super) fn direct_pass(h: Hypothesis, mesh: &Mesh, camera: &Camera, light: Vec3) -> Vec<f32> {
+    let u = unit_light(light);
+    let depth = h.geometry.depth != DepthMode::None;
+    let frame = with_geometry(h.geometry, || {
+        match (h.stage == StageName::VertexLight, depth, h.affine) {
+            (true, true, true) => draw::<DirectPerVertex<true>, Affine>(mesh, camera, &u),
+            (true, true, false) => draw::<DirectPerVertex<true>, Perspective>(mesh, camera, &u),
+            (true, false, true) => draw::<DirectPerVertex<false>, Affine>(mesh, camera, &u),
+            (true, false, false) => draw::<DirectPerVertex<false>, Perspective>(mesh, camera, &u),
+            (false, true, true) => draw::<DirectPerPixel<true>, Affine>(mesh, camera, &u),
+            (false, true, false) => draw::<DirectPerPixel<true>, Perspective>(mesh, camera, &u),
+            (false, false, true) => draw::<DirectPerPixel<false>, Affine>(mesh, camera, &u),
+            (false, false, false) => draw::<DirectPerPixel<false>, Perspective>(mesh, camera, &u),
+        }
+    });
+    frame.color.iter().map(|&c| decode(c)).collect()
+}
+
+/// Draws what `h` shows on `mesh` with the light at `light`.
+pub fn measure(h: Hypothesis, mesh: &Mesh, camera: &Camera, light: Vec3) -> Measured {
+    let u = unit_light(light);
+    let (w, h_px) = (camera.width, camera.height);
+    let n = (w * h_px) as usize;
+    let mut surface = vec![NONE; n];
+    let mut surfaces = Vec::new();
+    let mut direct = Vec::new();
+    match h.stage {
+        StageName::Points | StageName::Wireframe => {
+            let frame = with_geometry(h.geometry, || match h.stage {
+                StageName::Points => draw::<Points, Affine>(mesh, camera, &u),
+                _ => draw::<Wireframe, Affine>(mesh, camera, &u),
+            });
+            surfaces.push((Vec3::ONE, Vec3::ZERO));
+            for (s, &c) in surface.iter_mut().zip(&frame.color) {
+                if c != 0 {
+                    *s = 0;
+                }
+            }
+        }
+        _ => {
+            let depth = h.geometry.depth != DepthMode::None;
+            let (colors, normals) = with_geometry(h.geometry, || {
+                if depth {
+                    (
+                        draw::<Shows<true, false>, Affine>(mesh, camera, &u),
+                        draw::<Shows<true, true>, Affine>(mesh, camera, &u),
+                    )
+                } else {
+                    (
+                        draw::<Shows<false, false>, Affine>(mesh, camera, &u),
+                        draw::<Shows<false, true>, Affine>(mesh, camera, &u),
+                    )
+                }
+            });
+            // Each drawn pixel's (material, face normal), by their packed colours.
+            let mut known: Vec<(u32, u32)> = Vec::new();
+            for face in &mesh.faces {
+                let key = (
+                    pack(mesh.material(face).color),
+                    pack(face.normal * 0.5 + 0.5),
+                );
+                if !known.contains(&key) {
+                    known.push(key);
+                    surfaces.push((mesh.material(face).color, face.normal));
+                }
+            }
+            for (i, s) in surface.iter_mut().enumerate() {
+                if colors.color[i] == 0 {
+                    continue;
+                }
+                let key = (colors.color[i], normals.color[i]);
+                if let Some(k) = known.iter().position(|&k| k == key) {
+                    *s = k as u16;
+                }
+            }
+            if h.lit() {
+                direct = direct_pass(h, mesh, camera, light);
+            }
+        }
+    }
+    let interior = interior_of(&surface, w, h_px, 2);
+    Measured {
+        width: w,
+        height: h_px,
+        surface,
+        surfaces,
+        direct,
+        interior,
+    }
+}
+
+/// Pixels whose (2 margin + 1)² neighbourhood shows one surface.
+fn interior_of(surface: &[u16], width: u32, height: u32, margin: u32) -> Vec<bool> {
+    let (w, h, m) = (width as usize, height as usize, margin as usize);
+    let mut mask = vec![false; w * h];
+    for y in m..h.saturating_sub(m) {
+        for x in m..w.saturating_sub(m) {
+            let s = surface[y * w + x];
+            mask[y * w + x] = s != NONE
+                && (y - m..=y + m).all(|yy| (x - m..=x + m).all(|xx| surface[yy * w + xx] == s));
+        }
+    }
+    mask
+}
+
+/// The light and the 8-bit packing a hypothesis is drawn with.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Shading {
+    pub power: f32,
+    pub indirect: f32,
+    /// π written as 3.14 in eq. 10: the direct light 1.0005 times stronger.
+    pub pi_314: bool,
+    /// Colours truncated to 8 bits instead of rounded.
+    pub truncated: bool,
+}
+
+impl Shading {
+    pub fn handout() -> Shading {
+        let l = Light::handout();
+        Shading {
+            power: l.power.x,
+            indirect: l.indirect.x,
+            pi_314: false,
+            truncated: false,
+        }
+    }
+
+    /// The power that multiplies the direct light per unit power computed with π.
+    fn effective_power(self) -> f32 {
+        if self.pi_314 {
+            self.power * (std::f32::consts::PI / PI_314)
+        } else {
+            self.power
+        }
+    }
+}
+
+/// The colour `m` predicts at pixel `i` with `shading`, packed to `0x00RRGGBB`.
+pub(super) fn predict(m: &Measured, i: usize, lit: bool, shading: Shading) -> u32 {
+    let s = m.surface[i];
+    if s == NONE {
+        return 0;
+    }
+    let rho = m.surfaces[s as usize].0;
+    let c = if lit {
+        rho * (shading.effective_power() * m.direct[i] + shading.indirect)
+    } else {
+        rho
+    };
+    if shading.truncated {
+        let q = |v: f32| (v.clamp(0.0, 1.0) * 255.0) as u32;
+        (q(c.x) << 16) | (q(c.y) << 8) | q(c.z)
+    } else {
+        pack(c)
+    }
+}
+
+/// The whole image `m` predicts.
+pub fn predicted(m: &Measured, lit: bool, shading: Shading) -> Frame {
+    let mut frame = Frame::new(m.width, m.height);
+    for (i, c) in frame.color.iter_mut().enumerate() {
+        *c = predict(m, i, lit, shading);
+    }
+    frame
+}
+
+/// How far a prediction is from the screenshot.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Errors {
+    /// RMSE over the interior pixels' channels, in 8-bit steps (over every pixel
+    /// when the stage has no interiors: points and lines).
+    pub interior_rmse: f64,
+    /// Share of all pixels with a channel off by more than [`THRESHOLD`].
+    pub off: f64,
+    /// Share of all pixels within [`LAB3_TOLERANCE`].
+    pub near: f64,
+    /// Share of the pixels the hypothesis draws within [`LAB3_TOLERANCE`].
+    pub near_drawn: f64,
+    /// Pixels equal in every channel.
+    pub exact: usize,
+    /// The largest channel difference.
+    pub max: u8,
+}
+
+pub(super) fn largest_difference(a: u32, b: u32) -> u8 {
+    let (p, q) = (unpack(a), unpack(b));
+    (0..3).map(|k| p[k].abs_diff(q[k])).max().unwrap_or(0)
+}
+
+pub(super) fn errors(m: &Measured, observed: &Frame, lit: bool, shading: Shading) -> Errors {
+    let use_interior = m.interior.iter().any(|&b| b);
+    let (mut sum, mut count, mut off, mut near, mut drawn, mut near_drawn) =
+        (0u64, 0u64, 0, 0, 0, 0);
+    let (mut exact, mut max) = (0, 0u8);
+    for (i, &o) in observed.color.iter().enumerate() {
+        let p = predict(m, i, lit, shading);
+        let d = largest_difference(p, o);
+        max = max.max(d);
+        exact += (p == o) as usize;
+        off += (d > THRESHOLD) as usize;
+        near += (d <= LAB3_TOLERANCE) as usize;
+        if m.surface[i] != NONE {
+            drawn += 1;
+            near_drawn += (d <= LAB3_TOLERANCE) as usize;
+        }
+        if !use_interior || m.interior[i] {
+            let (a, b) = (unpack(p), unpack(o));
+            for k in 0..3 {
+                let e = a[k].abs_diff(b[k]) as u64;
+                sum += e * e;
+            }
+            count += 3;
+        }
+    }
+    let n = observed.color.len().max(1) as f64;
+    Errors {
+        interior_rmse: if count == 0 {
+            0.0
+        } else {
+            (sum as f64 / count as f64).sqrt()
+        },
+        off: off as f64 / n,
+        near: near as f64 / n,
+        near_drawn: if drawn == 0 {
+            0.0
+        } else {
+            near_drawn as f64 / drawn as f64
+        },
+        exact,
+        max,
+    }
+}
+
+/// A hypothesis with its light fitted, and how well it explains the image.
+#[derive(Clone, Debug)]
+pub struct Fitted {
+    pub hypothesis: Hypothesis,
+    pub shading: Shading,
+    pub light: Vec3,
+    pub errors: Errors,
+    pub measured: Measured,
+}
+
+impl Fitted {
+    /// Every variant's name: the geometry's and the shading's.
+    pub fn variants(&self) -> Vec<&'static str> {
+        let mut names = self.hypothesis.variants();
+        if self.shading.truncated {
+            names.push("truncated-colours");
+        }
+        if self.shading.pi_314 {
+            names.push("pi-3.14");
+        }
+        names
+    }
+
+    /// Better: fewer pixels off, then a smaller interior error, then fewer variants.
+    pub(super) fn better_than(&self, other: &Fitted) -> bool {
+        let key = |f: &Fitted| (f.errors.off, f.errors.interior_rmse, f.variants().len());
+        let (a, b) = (key(self), key(other));
+        (a.0, a.1, a.2) < (b.0, b.1, b.2)
+    }
+}
+
+/// Where the differences left after the fit are.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Where {
+    /// Pixels off by more than [`THRESHOLD`].
+    pub total: usize,
+    /// Of them, on the edges: not in any surface's interior.
+    pub edges: usize,
+    /// The rest, by surface name, most first.
+    pub surfaces: Vec<(String, usize)>,
+}
+
+impl Where {
+    /// One word for a teacher's script: `none`, `edges`, `one-surface` or `everywhere`.
+    pub fn summary(&self) -> &'static str {
+        let inside = self.total - self.edges;
+        if self.total == 0 {
+            "none"
+        } else if inside * 20 <= self.total {
+            "edges"
+        } else if self
+            .surfaces
+            .first()
+            .is_some_and(|(_, k)| k * 5 >= inside * 4)
+        {
+            "one-surface"
+        } else {
+            "everywhere"
+        }
+    }
+}
+
+/// A surface of the box by its colour and the way it faces.
+pub fn surface_name(rho: Vec3, normal: Vec3) -> String {
+    let named = [
+        (cornell::GREEN, "the floor"),
+        (cornell::PURPLE, "the left wall"),
+        (cornell::YELLOW, "the right wall"),
+        (cornell::CYAN, "the ceiling"),
+        (cornell::WHITE, "the back wall"),
+        (cornell::RED, "the short block"),
+        (cornell::BLUE, "the tall block"),
+    ];
+    let Some(&(_, name)) = named.iter().find(|(c, _)| *c == rho) else {
+        return format!("the surface of colour {rho}");
+    };
+    if rho != cornell::RED && rho != cornell::BLUE {
+        return name.to_string();
+    }
+    let facing = if normal.y < -0.9 {
+        "top"
+    } else if normal.z < -0.5 {
+        "front"
+    } else if normal.x < -0.5 {
+        "left side"
+    } else if normal.x > 0.5 {
+        "right side"
+    } else {
+        "back"
+    };
+    format!("{name}'s {facing}")
+}
+
+pub(super) fn where_off(f: &Fitted, observed: &Frame) -> Where {
+    let m = &f.measured;
+    let lit = f.hypothesis.lit();
+    let mut by_surface = vec![0usize; m.surfaces.len()];
+    let (mut total, mut edges) = (0, 0);
+    for (i, &o) in observed.color.iter().enumerate() {
+        if largest_difference(predict(m, i, lit, f.shading), o) <= THRESHOLD {
+            continue;
+        }
+        total += 1;
+        if m.interior[i] {
+            by_surface[m.surface[i] as usize] += 1;
+        } else {
+            edges += 1;
+        }
+    }
+    let mut surfaces: Vec<(String, usize)> = by_surface
+        .iter()
+        .enumerate()
+        .filter(|(_, &k)| k > 0)
+        .map(|(s, &k)| {
+            let (rho, normal) = m.surfaces[s];
+            let name = if lit || f.hypothesis.stage >= StageName::Filled {
+                surface_name(rho, normal)
+            } else {
+                "the lines".to_string()
+            };
+            (name, k)
+        })
+        .collect();
+    surfaces.sort_by_key(|s| std::cmp::Reverse(s.1));
+    Where {
+        total,
+        edges,
+        surfaces,
+    }
+}
+
+/// What `check` found in a screenshot.
+#[derive(Clone, Debug)]
+pub struct ImageCheck {
+    pub width: u32,
+    pub height: u32,
+    /// The best explanation, or `None` when it is not a lab 3 image.
+    pub fitted: Option<Fitted>,
+    /// The best explanation even when it is too poor to count (for the message).
+    pub closest: Fitted,
+    /// The handout's figure of the same number against the screenshot.
+    pub before: Errors,
+    pub remaining: Where,
+    /// What the best explanation draws.
+    pub expected: Frame,
+    /// Whether the light's position was searched for (`--fit-light`).
+    pub light_searched: bool,
+}

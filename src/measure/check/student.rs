@@ -1,0 +1,264 @@
+//! The known differences of students' implementations, built on the core: a
+//! rasterizer that places vertices and walks edges the other ways, and stages that
+//! measure what a pixel shows (its surface, the direct light per unit power) so
+//! that the light's power and the indirect light can be fitted afterwards.
+//!
+//! The core's `Rasterizer` is a type with no state, monomorphised into every
+//! pipeline for speed. One rasterizer type per combination of variants would
+//! multiply the pipelines compiled (8 walks x 2 projections x every stage), so
+//! the variant in use is instead set for the current thread while one frame is
+//! drawn ([`with_geometry`]); drawing happens on that thread only.
+
+use super::walk::polygon_rows;
+use super::walk::Walk;
+use crate::pipeline::clip::{ScreenVertex, MAX_CORNERS};
+use crate::pipeline::interpolate::{Nothing, Pixel, Varying};
+use crate::pipeline::mesh::Vertex;
+use crate::pipeline::raster::rows::{draw_polygon_rows, Rows};
+use crate::pipeline::raster::{Rasterizer, Viewport};
+use crate::pipeline::stage::{Primitive, Stage, Surface, Uniforms};
+use glam::Vec3;
+use std::cell::Cell;
+
+/// How the depth test is done.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum DepthMode {
+    /// The handout's: 1/z interpolated, the larger kept.
+    #[default]
+    InverseZ,
+    /// No depth buffer: the triangle drawn last wins (painter's order).
+    None,
+    /// z itself interpolated linearly on the screen, the smaller kept.
+    Z,
+}
+
+/// Everything that decides which pixel shows which surface.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct Geometry {
+    /// `int(f X/Z + W/2)`: the half size added before truncating.
+    pub projection_sum: bool,
+    pub walk: Walk,
+    pub depth: DepthMode,
+}
+
+thread_local! {
+    static GEOMETRY: Cell<Geometry> = Cell::new(Geometry::default());
+}
+
+/// Runs `draw` with [`StudentRaster`] drawing as `geometry` says, on this thread;
+/// the geometry before is restored afterwards, also if `draw` panics.
+pub fn with_geometry<T>(geometry: Geometry, draw: impl FnOnce() -> T) -> T {
+    struct Restore(Geometry);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            GEOMETRY.with(|g| g.set(self.0));
+        }
+    }
+    let _restore = Restore(GEOMETRY.with(|g| g.replace(geometry)));
+    draw()
+}
+
+/// With [`DepthMode::Z`], what the rasterizer carries in place of 1/z:
+/// `Z_CARRIED - z`, linear in z and larger when nearer, so the core's test (keep
+/// the larger, 0 = nothing drawn) keeps the smaller z. Every z of the lab's
+/// views is far below it; a small power of two keeps the most of z's bits. The
+/// running sums still round differently from a student's sum of z itself, so
+/// where two surfaces tie (along a shared edge) the winner can differ.
+const Z_CARRIED: f32 = 16.0;
+
+/// The rows rasterizer with the variants of [`Geometry`]; the handout's when the
+/// geometry is the default.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct StudentRaster;
+
+#[inline]
+fn place<V>(s: ScreenVertex<V>, viewport: &Viewport, g: Geometry) -> Pixel<V> {
+    let (hw, hh) = (viewport.half_width, viewport.half_height);
+    let (x, y) = if g.projection_sum {
+        ((s.x + hw as f32) as i32, (s.y + hh as f32) as i32)
+    } else {
+        (s.x as i32 + hw, s.y as i32 + hh)
+    };
+    let zinv = match g.depth {
+        DepthMode::Z => Z_CARRIED - 1.0 / s.zinv,
+        _ => s.zinv,
+    };
+    Pixel {
+        x,
+        y,
+        zinv,
+        varying: s.varying,
+    }
+}
+
+fn geometry() -> Geometry {
+    GEOMETRY.with(Cell::get)
+}
+
+impl Rasterizer for StudentRaster {
+    type Scratch<V: Varying> = Rows<V>;
+
+    fn point<V: Varying>(p: ScreenVertex<V>, viewport: &Viewport, mut plot: impl FnMut(Pixel<V>)) {
+        let p = place(p, viewport, geometry());
+        if viewport.bounds.contains(&p) {
+            plot(p);
+        }
+    }
+
+    fn line<V: Varying>(
+        a: ScreenVertex<V>,
+        b: ScreenVertex<V>,
+        viewport: &Viewport,
+        mut plot: impl FnMut(Pixel<V>),
+    ) {
+        let g = geometry();
+        let (a, b) = (place(a, viewport, g), place(b, viewport, g));
+        for p in g.walk.pixels(a, b) {
+            if viewport.bounds.contains(&p) {
+                plot(p);
+            }
+        }
+    }
+
+    fn polygon<V: Varying>(
+        rows: &mut Rows<V>,
+        corners: &[ScreenVertex<V>],
+        viewport: &Viewport,
+        plot: impl FnMut(Pixel<V>),
+    ) {
+        let g = geometry();
+        let mut pixels = [Pixel::default(); MAX_CORNERS];
+        for (p, &c) in pixels.iter_mut().zip(corners) {
+            *p = place(c, viewport, g);
+        }
+        polygon_rows(g.walk, &pixels[..corners.len()], &viewport.bounds, rows);
+        draw_polygon_rows(rows, &viewport.bounds, plot);
+    }
+}
+
+/// The largest direct light per unit power [`encode`] keeps; more is clamped. A
+/// surface 0.14 from the light facing it receives 4.
+pub const DIRECT_RANGE: f32 = 4.0;
+
+/// A value in [0, [`DIRECT_RANGE`]) as a colour whose 8-bit packing holds it in
+/// 24 bits: the render target keeps bytes, and this way it keeps the value to
+/// 2.4e-7 instead of 1/255.
+#[inline]
+pub fn encode(v: f32) -> Vec3 {
+    let k = (v / DIRECT_RANGE * 16_777_216.0).clamp(0.0, 16_777_215.0) as u32;
+    Vec3::new(
+        (k >> 16) as f32 / 255.0,
+        ((k >> 8) & 0xff) as f32 / 255.0,
+        (k & 0xff) as f32 / 255.0,
+    )
+}
+
+/// The value [`encode`] put in a packed colour.
+pub fn decode(c: u32) -> f32 {
+    (c & 0x00ff_ffff) as f32 / 16_777_216.0 * DIRECT_RANGE
+}
+
+/// What a pixel shows: its surface's reflectance (`NORMAL` false) or its normal
+/// mapped into [0, 1] (`NORMAL` true), with or without the depth test.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Shows<const DEPTH: bool, const NORMAL: bool>;
+
+impl<const DEPTH: bool, const NORMAL: bool> Stage for Shows<DEPTH, NORMAL> {
+    type Varying = Nothing;
+    const PRIMITIVE: Primitive = Primitive::Polygons;
+    const DEPTH_TEST: bool = DEPTH;
+
+    fn vertex_shader(_: &Vertex, _: &Surface, _: &Uniforms) -> Nothing {
+        Nothing {}
+    }
+
+    fn pixel_shader(_: &Nothing, surface: &Surface, _: &Uniforms) -> Vec3 {
+        if NORMAL {
+            surface.normal * 0.5 + 0.5
+        } else {
+            surface.material.color
+        }
+    }
+}
+
+/// Eq. 10 per unit power at each pixel, from the interpolated 3D position
+/// (section 6.2), encoded: draw with a light of power 1.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct DirectPerPixel<const DEPTH: bool>;
+
+impl<const DEPTH: bool> Stage for DirectPerPixel<DEPTH> {
+    type Varying = crate::pipeline::stage::Position;
+    const PRIMITIVE: Primitive = Primitive::Polygons;
+    const DEPTH_TEST: bool = DEPTH;
+
+    fn vertex_shader(vertex: &Vertex, _: &Surface, _: &Uniforms) -> Self::Varying {
+        crate::pipeline::stage::Position {
+            world: vertex.position,
+        }
+    }
+
+    fn pixel_shader(varying: &Self::Varying, surface: &Surface, uniforms: &Uniforms) -> Vec3 {
+        encode(uniforms.light.direct(varying.world, surface.normal).x)
+    }
+}
+
+/// Eq. 10 per unit power at each vertex, interpolated (section 6.1), encoded.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct DirectPerVertex<const DEPTH: bool>;
+
+impl<const DEPTH: bool> Stage for DirectPerVertex<DEPTH> {
+    type Varying = f32;
+    const PRIMITIVE: Primitive = Primitive::Polygons;
+    const DEPTH_TEST: bool = DEPTH;
+
+    fn vertex_shader(vertex: &Vertex, _: &Surface, uniforms: &Uniforms) -> f32 {
+        uniforms.light.direct(vertex.position, vertex.normal).x
+    }
+
+    fn pixel_shader(varying: &f32, _: &Surface, _: &Uniforms) -> Vec3 {
+        encode(*varying)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::pipeline::target::pack;
+
+    #[test]
+    fn the_default_geometry_draws_the_handouts_figures() {
+        use crate::pipeline::{Camera, Depth, Perspective};
+        use crate::pipeline::{Frame, Light, Pipeline, PixelLight, Render, Wireframe};
+        let (mesh, camera) = (crate::scene::cornell_box(), Camera::handout(200, 150));
+        let uniforms = Uniforms {
+            light: Light::handout(),
+        };
+        fn both<S: Stage>(mesh: &crate::pipeline::Mesh, c: &Camera, u: &Uniforms) -> [Frame; 2] {
+            let (mut core, mut student) = (Frame::default(), Frame::default());
+            Pipeline::<S, Perspective>::new().render(mesh, c, u, &mut core);
+            with_geometry(Geometry::default(), || {
+                Pipeline::<S, Perspective, StudentRaster>::new().render(mesh, c, u, &mut student)
+            });
+            [core, student]
+        }
+        for [core, student] in [
+            both::<Wireframe>(&mesh, &camera, &uniforms),
+            both::<Depth>(&mesh, &camera, &uniforms),
+            both::<PixelLight>(&mesh, &camera, &uniforms),
+        ] {
+            assert!(core.color.iter().any(|&c| c != 0));
+            assert_eq!(core.color, student.color);
+        }
+    }
+
+    #[test]
+    fn encoded_values_survive_8_bit_packing() {
+        for v in [0.0, 1e-6, 0.0123, 0.25, 1.0, 3.99] {
+            let back = decode(pack(encode(v)));
+            assert!(
+                (back - v).abs() <= DIRECT_RANGE / 16_777_216.0,
+                "{v}: {back}"
+            );
+        }
+    }
+}

@@ -1,0 +1,1054 @@
+//! `rasterlab check`: screenshots and rows printouts made by other implementations
+//! of the lab are recognised, with their stage, light and variants.
+//!
+//! The screenshots come from code the checker does not share: the plain step
+//! programs in steps/, and `student_lab` below, a compact lab 3 written the way
+//! the handout's listings go, with a switch for each known difference.
+
+mod common;
+use common::temp_dir;
+use glam::Vec3;
+use rasterlab::measure::check::check_image;
+use rasterlab::measure::check::image::{ImageCheck, Setup};
+use rasterlab::measure::check::rows::{check_rows, parse_rows, RowsVariant};
+use rasterlab::{cornell_box, Frame};
+use std::process::{Command, Output};
+
+#[allow(dead_code)]
+#[path = "../steps/5-depth.rs"]
+mod depth;
+#[allow(dead_code)]
+#[path = "../steps/4-filled.rs"]
+mod filled;
+#[allow(dead_code)]
+#[path = "../steps/7-pixel-light.rs"]
+mod pixel_light;
+#[allow(dead_code)]
+#[path = "../steps/2-points.rs"]
+mod points;
+#[allow(dead_code)]
+#[path = "../steps/6-vertex-light.rs"]
+mod vertex_light;
+#[allow(dead_code)]
+#[path = "../steps/3-wireframe.rs"]
+mod wireframe;
+
+/// What a student's lab draws: the stage and every choice that differs among
+/// the implementations we have seen.
+#[derive(Clone, Copy, Debug)]
+struct Lab {
+    shade: Shade,
+    depth: DepthTest,
+    /// Lit stages: interpolate q/z and 1/z, then multiply by z.
+    perspective: bool,
+    /// `int(f X/Z + W/2)` instead of `int(f X/Z) + W/2`.
+    projection_sum: bool,
+    /// `Interpolate` rounds instead of truncating.
+    rounding: bool,
+    /// Edges walked with |dy| + 1 points.
+    dy_sampling: bool,
+    /// Colours truncated to 8 bits.
+    truncate: bool,
+    pi: f32,
+    power: f32,
+    indirect: f32,
+    light: Vec3,
+    width: i32,
+    height: i32,
+    focal: f32,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Shade {
+    /// White vertices (section 2).
+    Points,
+    /// White edges (section 3).
+    Lines,
+    Flat,
+    PerVertex,
+    PerPixel,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum DepthTest {
+    InverseZ,
+    Z,
+    Painter,
+}
+
+impl Lab {
+    fn handout(shade: Shade) -> Lab {
+        Lab {
+            shade,
+            depth: DepthTest::InverseZ,
+            perspective: shade == Shade::PerPixel,
+            projection_sum: false,
+            rounding: false,
+            dy_sampling: false,
+            truncate: false,
+            pi: std::f32::consts::PI,
+            power: 1.1,
+            indirect: 0.5,
+            light: Vec3::new(0.0, -0.5, -0.7),
+            width: 500,
+            height: 500,
+            focal: 500.0,
+        }
+    }
+}
+
+/// A pixel on its way through the student's lab: the position, 1/z, z (for a
+/// depth test on z) and the carried quantity (light or 3D position, over z
+/// when perspective-correct).
+#[derive(Clone, Copy, Default)]
+struct Px {
+    x: i32,
+    y: i32,
+    zinv: f32,
+    z: f32,
+    q: Vec3,
+}
+
+fn student_interpolate(lab: &Lab, a: Px, b: Px, n: usize) -> Vec<Px> {
+    let d = (n.max(2) - 1) as f32;
+    let (sx, sy) = ((b.x - a.x) as f32 / d, (b.y - a.y) as f32 / d);
+    let (szinv, sz, sq) = ((b.zinv - a.zinv) / d, (b.z - a.z) / d, (b.q - a.q) / d);
+    let (mut x, mut y, mut zinv, mut z, mut q) = (a.x as f32, a.y as f32, a.zinv, a.z, a.q);
+    let whole = |v: f32| {
+        if lab.rounding {
+            v.round() as i32
+        } else {
+            v as i32
+        }
+    };
+    let mut out = Vec::with_capacity(n);
+    for _ in 0..n {
+        out.push(Px {
+            x: whole(x),
+            y: whole(y),
+            zinv,
+            z,
+            q,
+        });
+        x += sx;
+        y += sy;
+        zinv += szinv;
+        z += sz;
+        q += sq;
+    }
+    out
+}
+
+/// A whole lab 3 for the Cornell box, as 8-bit RGB rows.
+fn student_lab(lab: &Lab) -> Frame {
+    let (w, h) = (lab.width, lab.height);
+    let mut color = vec![Vec3::ZERO; (w * h) as usize];
+    let mut zinv_buffer = vec![0.0f32; (w * h) as usize];
+    let mut z_buffer = vec![f32::INFINITY; (w * h) as usize];
+    let camera = Vec3::new(0.0, 0.0, -3.001);
+    let direct = |p: Vec3, n: Vec3| {
+        let r = lab.light - p;
+        let cos = r.normalize().dot(n).max(0.0);
+        lab.power * cos / (4.0 * lab.pi * r.length_squared())
+    };
+    for t in cornell_box().triangles() {
+        let rho = t.color;
+        let corners: Vec<Px> = [t.v0, t.v1, t.v2]
+            .iter()
+            .map(|&v| {
+                let c = v - camera;
+                let zinv = 1.0 / c.z;
+                let (fx, fy) = (lab.focal * c.x * zinv, lab.focal * c.y * zinv);
+                let (x, y) = if lab.projection_sum {
+                    ((fx + (w / 2) as f32) as i32, (fy + (h / 2) as f32) as i32)
+                } else {
+                    (fx as i32 + w / 2, fy as i32 + h / 2)
+                };
+                let q = match lab.shade {
+                    Shade::Points | Shade::Lines | Shade::Flat => Vec3::ZERO,
+                    Shade::PerVertex => rho * (Vec3::splat(direct(v, t.normal)) + lab.indirect),
+                    Shade::PerPixel => v,
+                };
+                let q = if lab.perspective { q * zinv } else { q };
+                Px {
+                    x,
+                    y,
+                    zinv,
+                    z: c.z,
+                    q,
+                }
+            })
+            .collect();
+        let mut put = |p: &Px| {
+            if (0..w).contains(&p.x) && (0..h).contains(&p.y) {
+                color[(p.y * w + p.x) as usize] = Vec3::ONE;
+            }
+        };
+        match lab.shade {
+            Shade::Points => {
+                corners.iter().for_each(&mut put);
+                continue;
+            }
+            Shade::Lines => {
+                for i in 0..3 {
+                    let (a, b) = (corners[i], corners[(i + 1) % 3]);
+                    let (dx, dy) = ((a.x - b.x).abs(), (a.y - b.y).abs());
+                    let n = if lab.dy_sampling { dy } else { dx.max(dy) } as usize + 1;
+                    student_interpolate(lab, a, b, n).iter().for_each(&mut put);
+                }
+                continue;
+            }
+            _ => {}
+        }
+        // ComputePolygonRows
+        let top = corners.iter().map(|p| p.y).min().unwrap();
+        let bottom = corners.iter().map(|p| p.y).max().unwrap();
+        let rows = (bottom - top + 1) as usize;
+        let mut left = vec![
+            Px {
+                x: i32::MAX,
+                ..Px::default()
+            };
+            rows
+        ];
+        let mut right = vec![
+            Px {
+                x: i32::MIN,
+                ..Px::default()
+            };
+            rows
+        ];
+        for i in 0..3 {
+            let (a, b) = (corners[i], corners[(i + 1) % 3]);
+            let (dx, dy) = ((a.x - b.x).abs(), (a.y - b.y).abs());
+            let n = if lab.dy_sampling { dy } else { dx.max(dy) } as usize + 1;
+            for p in student_interpolate(lab, a, b, n) {
+                let Some(r) = usize::try_from(p.y - top).ok().filter(|&r| r < rows) else {
+                    continue;
+                };
+                if p.x < left[r].x {
+                    left[r] = p;
+                }
+                if p.x > right[r].x {
+                    right[r] = p;
+                }
+            }
+        }
+        // DrawPolygonRows and PixelShader
+        for (l, r) in left.iter().zip(&right) {
+            if r.x < l.x {
+                continue;
+            }
+            for p in student_interpolate(lab, *l, *r, (r.x - l.x + 1) as usize) {
+                if !(0..w).contains(&p.x) || !(0..h).contains(&p.y) {
+                    continue;
+                }
+                let i = (p.y * w + p.x) as usize;
+                match lab.depth {
+                    DepthTest::InverseZ if p.zinv <= zinv_buffer[i] => continue,
+                    DepthTest::Z if p.z >= z_buffer[i] => continue,
+                    _ => {}
+                }
+                zinv_buffer[i] = p.zinv;
+                z_buffer[i] = p.z;
+                let q = if lab.perspective { p.q / p.zinv } else { p.q };
+                color[i] = match lab.shade {
+                    Shade::Points | Shade::Lines | Shade::Flat => rho,
+                    Shade::PerVertex => q,
+                    Shade::PerPixel => rho * (Vec3::splat(direct(q, t.normal)) + lab.indirect),
+                };
+            }
+        }
+    }
+    let mut frame = Frame::new(w as u32, h as u32);
+    for (out, c) in frame.color.iter_mut().zip(&color) {
+        let q = |v: f32| {
+            let v = v.clamp(0.0, 1.0) * 255.0;
+            (if lab.truncate { v } else { v + 0.5 }) as u32
+        };
+        *out = q(c.x) << 16 | q(c.y) << 8 | q(c.z);
+    }
+    frame
+}
+
+fn frame_of(rgb: &[u8], width: u32, height: u32) -> Frame {
+    let mut frame = Frame::new(width, height);
+    for (c, p) in frame.color.iter_mut().zip(rgb.chunks_exact(3)) {
+        *c = (p[0] as u32) << 16 | (p[1] as u32) << 8 | p[2] as u32;
+    }
+    frame
+}
+
+fn check(frame: &Frame) -> ImageCheck {
+    check_image(frame, &Setup::handout(frame.width, frame.height))
+}
+
+/// The figure, variants and light power a check found, with its errors.
+fn found(c: &ImageCheck) -> (u8, Vec<&'static str>, f32, f64) {
+    let f = c.fitted.as_ref().expect("a lab 3 image");
+    (
+        f.hypothesis.figure(),
+        f.variants(),
+        f.shading.power,
+        f.errors.off,
+    )
+}
+
+#[test]
+fn the_step_programs_figures_are_the_handouts_with_no_variant() {
+    let cases: [(u8, Vec<u8>); 7] = [
+        (2, points::draw().to_rgb8()),
+        (3, wireframe::draw().to_rgb8()),
+        (4, filled::draw().to_rgb8()),
+        (5, depth::draw().to_rgb8()),
+        (6, vertex_light::draw().to_rgb8()),
+        (7, pixel_light::draw(true).to_rgb8()),
+        (8, pixel_light::draw(false).to_rgb8()),
+    ];
+    for (figure, rgb) in cases {
+        let c = check(&frame_of(&rgb, 500, 500));
+        let (fig, variants, power, off) = found(&c);
+        assert_eq!((fig, variants.clone()), (figure, vec![]), "figure {figure}");
+        assert_eq!(off, 0.0, "figure {figure}");
+        if figure >= 6 {
+            assert!((power - 1.1).abs() < 0.011, "figure {figure}: P = {power}");
+        }
+        assert_eq!(c.remaining.summary(), "none", "figure {figure}");
+    }
+}
+
+#[test]
+fn colours_truncated_by_a_step_program_are_named() {
+    // Step 7's own linear colours, truncated instead of rounded.
+    let screen = pixel_light::draw(true);
+    let rgb: Vec<u8> = screen
+        .pixels
+        .iter()
+        .flat_map(|c| c.to_array().map(|v| (v.clamp(0.0, 1.0) * 255.0) as u8))
+        .collect();
+    let c = check(&frame_of(&rgb, 500, 500));
+    let (fig, variants, power, off) = found(&c);
+    assert_eq!((fig, variants), (7, vec!["truncated-colours"]));
+    assert!((power - 1.1).abs() < 0.011, "P = {power}");
+    assert_eq!(off, 0.0);
+}
+
+/// Checks a student lab's image: the figure, the variants (in the checker's
+/// order) and P within 1 %; at most `off` of the pixels off by more than 2/255.
+fn recognised(lab: Lab, figure: u8, variants: &[&str], off: f64) {
+    let c = check(&student_lab(&lab));
+    let (fig, found_variants, power, found_off) = found(&c);
+    assert_eq!(
+        (fig, found_variants.as_slice()),
+        (figure, variants),
+        "{lab:?}"
+    );
+    if matches!(lab.shade, Shade::PerVertex | Shade::PerPixel) {
+        assert!(
+            (power - lab.power).abs() <= 0.01 * lab.power,
+            "{lab:?}: P = {power}"
+        );
+    }
+    assert!(found_off <= off, "{lab:?}: {found_off} off");
+}
+
+#[test]
+fn light_powers_students_used_are_fitted_within_one_percent() {
+    for (power, shade) in [
+        (5.1, Shade::PerPixel),
+        (9.1, Shade::PerVertex),
+        (11.0, Shade::PerPixel),
+        (14.1, Shade::PerVertex),
+        (15.1, Shade::PerPixel),
+    ] {
+        let lab = Lab {
+            power,
+            ..Lab::handout(shade)
+        };
+        let figure = if shade == Shade::PerPixel { 7 } else { 6 };
+        recognised(lab, figure, &[], 0.001);
+    }
+}
+
+#[test]
+#[allow(clippy::approx_constant)] // pi as 3.14 is one of the differences
+fn each_known_difference_is_named() {
+    let pixel = Lab::handout(Shade::PerPixel);
+    let vertex = Lab::handout(Shade::PerVertex);
+    let flat = Lab::handout(Shade::Flat);
+    recognised(
+        Lab {
+            projection_sum: true,
+            ..flat
+        },
+        5,
+        &["projection-sum-truncated"],
+        0.0,
+    );
+    recognised(
+        Lab {
+            rounding: true,
+            ..flat
+        },
+        5,
+        &["rounding"],
+        0.0,
+    );
+    recognised(
+        Lab {
+            dy_sampling: true,
+            depth: DepthTest::Painter,
+            ..flat
+        },
+        4,
+        &["dy-sampling"],
+        0.0,
+    );
+    recognised(
+        Lab {
+            truncate: true,
+            power: 5.1,
+            ..pixel
+        },
+        7,
+        &["truncated-colours"],
+        0.001,
+    );
+    recognised(Lab { pi: 3.14, ..pixel }, 7, &["pi-3.14"], 0.001);
+    recognised(
+        Lab {
+            perspective: true,
+            ..vertex
+        },
+        6,
+        &["perspective-vertex-light"],
+        0.001,
+    );
+    recognised(
+        Lab {
+            perspective: false,
+            power: 11.0,
+            ..pixel
+        },
+        8,
+        &[],
+        0.001,
+    );
+    recognised(
+        Lab {
+            depth: DepthTest::Painter,
+            ..pixel
+        },
+        7,
+        &["no-depth-test"],
+        0.001,
+    );
+    recognised(
+        Lab {
+            projection_sum: true,
+            rounding: true,
+            truncate: true,
+            power: 14.1,
+            ..vertex
+        },
+        6,
+        &["projection-sum-truncated", "rounding", "truncated-colours"],
+        0.001,
+    );
+}
+
+#[test]
+fn points_and_lines_show_their_variants() {
+    let points = Lab::handout(Shade::Points);
+    let lines = Lab::handout(Shade::Lines);
+    recognised(points, 2, &[], 0.0);
+    recognised(lines, 3, &[], 0.0);
+    recognised(
+        Lab {
+            projection_sum: true,
+            ..points
+        },
+        2,
+        &["projection-sum-truncated"],
+        0.0,
+    );
+    recognised(
+        Lab {
+            dy_sampling: true,
+            ..lines
+        },
+        3,
+        &["dy-sampling"],
+        0.0,
+    );
+    recognised(
+        Lab {
+            rounding: true,
+            projection_sum: true,
+            ..lines
+        },
+        3,
+        &["projection-sum-truncated", "rounding"],
+        0.0,
+    );
+}
+
+#[test]
+fn figure_4_is_the_depth_stage_without_its_depth_test() {
+    let frame = frame_of(&filled::draw().to_rgb8(), 500, 500);
+    let mut setup = Setup::handout(500, 500);
+    setup.stage = Some(rasterlab::StageName::Depth);
+    let c = check_image(&frame, &setup);
+    let f = c.fitted.as_ref().unwrap();
+    assert_eq!(
+        (f.hypothesis.figure(), f.variants()),
+        (5, vec!["no-depth-test"])
+    );
+    assert_eq!(f.errors.off, 0.0);
+    // Before the fit, against Figure 5: the short block's front is hidden there.
+    assert!(c.before.off > 0.005, "{}", c.before.off);
+}
+
+#[test]
+fn another_size_sets_the_screen_and_the_focal_length() {
+    let lab = Lab {
+        width: 320,
+        height: 240,
+        focal: 240.0,
+        power: 9.1,
+        ..Lab::handout(Shade::PerPixel)
+    };
+    recognised(lab, 7, &[], 0.001);
+}
+
+#[test]
+fn a_light_elsewhere_is_found_with_fit_light() {
+    let light = Vec3::new(0.2, -0.6, -0.3);
+    let frame = student_lab(&Lab {
+        light,
+        ..Lab::handout(Shade::PerPixel)
+    });
+    let mut setup = Setup::handout(500, 500);
+    setup.fit_light = true;
+    let c = check_image(&frame, &setup);
+    let f = c.fitted.as_ref().unwrap();
+    assert_eq!((f.hypothesis.figure(), f.variants()), (7, vec![]));
+    assert!(f.light.distance(light) < 0.01, "{}", f.light);
+    assert!((f.shading.power - 1.1).abs() < 0.011, "{}", f.shading.power);
+    assert!(f.errors.off < 0.001, "{}", f.errors.off);
+}
+
+/// A pseudo-random generator for test images (xorshift), so they are the same
+/// on every run.
+fn noise(seed: &mut u64) -> u32 {
+    *seed ^= *seed << 13;
+    *seed ^= *seed >> 7;
+    *seed ^= *seed << 17;
+    (*seed >> 16) as u32
+}
+
+#[test]
+fn unrelated_images_are_not_lab_3_images() {
+    let mut seed = 0x2545_f491_4f6c_dd1d;
+    let mut noisy = Frame::new(500, 500);
+    for c in noisy.color.iter_mut() {
+        *c = noise(&mut seed) & 0x00ff_ffff;
+    }
+    let mut gradient = Frame::new(400, 300);
+    for (i, c) in gradient.color.iter_mut().enumerate() {
+        let (x, y) = ((i % 400) as u32, (i / 400) as u32);
+        *c = (x * 255 / 399) << 16 | (y * 255 / 299) << 8 | 128;
+    }
+    // Like a photograph: smooth blobs of colour over a dark, noisy background.
+    let mut photo = Frame::new(500, 500);
+    let blobs: Vec<(f32, f32, f32, [f32; 3])> = (0..12)
+        .map(|_| {
+            let mut r = || (noise(&mut seed) % 1000) as f32 / 1000.0;
+            (
+                r() * 500.0,
+                r() * 500.0,
+                40.0 + r() * 120.0,
+                [r(), r(), r()],
+            )
+        })
+        .collect();
+    for (i, c) in photo.color.iter_mut().enumerate() {
+        let (x, y) = ((i % 500) as f32, (i / 500) as f32);
+        let mut rgb = [0.05f32; 3];
+        for (bx, by, r, col) in &blobs {
+            let d2 = ((x - bx).powi(2) + (y - by).powi(2)) / (r * r);
+            for k in 0..3 {
+                rgb[k] += col[k] * (-d2).exp() * 0.6;
+            }
+        }
+        let grain = (noise(&mut seed) % 9) as f32 / 255.0;
+        let q = |v: f32| ((v + grain).clamp(0.0, 1.0) * 255.0) as u32;
+        *c = q(rgb[0]) << 16 | q(rgb[1]) << 8 | q(rgb[2]);
+    }
+    // A program that draws nothing: every stage draws something.
+    let black = Frame::new(500, 500);
+    for (name, frame) in [
+        ("noise", noisy),
+        ("gradient", gradient),
+        ("photo", photo),
+        ("black", black),
+    ] {
+        let c = check(&frame);
+        assert!(
+            c.fitted.is_none(),
+            "{name}: taken for {:?}",
+            c.fitted.map(|f| f.hypothesis)
+        );
+        assert!(
+            c.text(name)
+                .starts_with(&format!("{name} is not a lab 3 image")),
+            "{}",
+            c.text(name)
+        );
+        assert!(c.json(name).contains("\"lab3\":false,\"figure\":null"));
+    }
+}
+
+/// A student's `ComputePolygonRows` printout, written independently of the
+/// checker: the handout's loop with the variant's choices.
+fn student_rows(vertices: &[(i32, i32)], rounding: bool, dy: bool, exclusive_end: bool) -> String {
+    let top = vertices.iter().map(|v| v.1).min().unwrap();
+    let bottom = vertices.iter().map(|v| v.1).max().unwrap();
+    let n = (bottom - top + 1) as usize;
+    let mut left = vec![i32::MAX; n];
+    let mut right = vec![i32::MIN; n];
+    for i in 0..vertices.len() {
+        let (a, b) = (vertices[i], vertices[(i + 1) % vertices.len()]);
+        let (dx, dy_) = ((a.0 - b.0).abs(), (a.1 - b.1).abs());
+        let count = if dy { dy_ } else { dx.max(dy_) } + 1;
+        let steps = (count.max(2) - 1) as f32;
+        for k in 0..count {
+            let t = |from: i32, to: i32| {
+                // the running sum, as Interpolate keeps it
+                let step = (to - from) as f32 / steps;
+                let mut v = from as f32;
+                for _ in 0..k {
+                    v += step;
+                }
+                if rounding {
+                    v.round() as i32
+                } else {
+                    v as i32
+                }
+            };
+            let (x, y) = (t(a.0, b.0), t(a.1, b.1));
+            let row = (y - top) as usize;
+            left[row] = left[row].min(x);
+            right[row] = right[row].max(x);
+        }
+    }
+    (0..n)
+        .map(|r| {
+            let y = top + r as i32;
+            let end = right[r] + exclusive_end as i32;
+            format!("Start: ({},{}). End: ({},{}).\n", left[r], y, end, y)
+        })
+        .collect()
+}
+
+#[test]
+fn rows_printed_by_each_variant_are_recognised() {
+    let polygons: [&[(i32, i32)]; 3] = [
+        &[(10, 5), (5, 10), (15, 15)],
+        &[(3, 2), (40, 9), (17, 31)],
+        &[(50, 3), (2, 20), (31, 44), (61, 30)],
+    ];
+    for vertices in polygons {
+        for (rounding, dy, exclusive_end, names) in [
+            (false, false, false, vec![]),
+            (true, false, false, vec!["rounding"]),
+            (false, true, false, vec!["dy-sampling"]),
+            (false, false, true, vec!["exclusive-end"]),
+            (true, true, false, vec!["rounding", "dy-sampling"]),
+        ] {
+            let text = student_rows(vertices, rounding, dy, exclusive_end);
+            let c = check_rows(vertices, parse_rows(&text).unwrap());
+            assert!(
+                c.exact.iter().any(|v| v.names() == names),
+                "{vertices:?} {names:?}:\n{}",
+                c.text()
+            );
+            // On the handout's own triangle |dy| + 1 samples happen to give the
+            // same rows; on the larger polygons every variant shows.
+            let same = vertices.len() == 3 && vertices[1] == (5, 10) && names == ["dy-sampling"];
+            let shows = !names.is_empty() && !same;
+            assert_eq!(
+                c.first_difference.is_some(),
+                shows,
+                "{vertices:?} {names:?}"
+            );
+            if shows {
+                assert_eq!(c.exact[0].names(), names, "{vertices:?}:\n{}", c.text());
+            }
+        }
+    }
+}
+
+#[test]
+fn a_rows_report_names_the_first_differing_row_and_the_variant() {
+    let vertices = [(3, 2), (40, 9), (17, 31)];
+    let text = student_rows(&vertices, false, true, false);
+    let c = check_rows(&vertices, parse_rows(&text).unwrap());
+    let report = c.text();
+    let first = c.first_difference.unwrap();
+    assert_eq!(
+        report.lines().next().unwrap(),
+        format!(
+            "Your rows differ from the handout's in {} rows (the handout has 30, you printed 30); the first is row {}:",
+            c.differing,
+            first + 1
+        )
+    );
+    assert!(
+        report.contains("Reproduced exactly by: each edge is sampled at |dy| + 1 points instead of max(|dx|, |dy|) + 1 (variant: dy-sampling)."),
+        "{report}"
+    );
+    // A printout no variant makes: the closest is named with what still differs.
+    let mut rows = parse_rows(&text).unwrap();
+    rows[4][2] += 7;
+    let c = check_rows(&vertices, rows);
+    assert!(c.exact.is_empty());
+    assert_eq!(
+        c.closest.map(|(v, d)| (v.names(), d)),
+        Some((vec!["dy-sampling"], 1))
+    );
+    assert_eq!(RowsVariant::default().rows(&vertices).len(), 30);
+}
+
+fn rasterlab(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_rasterlab"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+/// Asserts the command failed with `code` and one line on stderr, equal to `line`.
+fn one_line_error(args: &[&str], code: i32, line: &str) {
+    let o = rasterlab(args);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(code), "{args:?}: {err}");
+    assert_eq!(err.lines().collect::<Vec<_>>(), [line], "{args:?}");
+}
+
+#[test]
+fn bad_input_is_a_one_line_error() {
+    let dir = temp_dir("check-errors");
+    let p = |name: &str| dir.join(name).to_string_lossy().into_owned();
+    one_line_error(
+        &["check", &p("missing.png")],
+        1,
+        &format!(
+            "error: cannot read {}: No such file or directory (os error 2)",
+            p("missing.png")
+        ),
+    );
+    std::fs::write(p("text.png"), "not an image").unwrap();
+    let o = rasterlab(&["check", &p("text.png")]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.starts_with(&format!("error: cannot read {}: ", p("text.png"))),
+        "{err}"
+    );
+    let shot = p("shot.png");
+    let rgb = vec![0u8; 40 * 30 * 3];
+    image::save_buffer(&shot, &rgb, 40, 30, image::ExtendedColorType::Rgb8).unwrap();
+    one_line_error(
+        &["check", &shot, "--size", "500x500"],
+        2,
+        &format!("error: {shot} is 40x30, not the 500x500 --size gives (see 'rasterlab --help')"),
+    );
+    std::fs::write(p("empty.txt"), "\n \n").unwrap();
+    one_line_error(
+        &["check", "rows", &p("empty.txt"), "10,5", "5,10", "15,15"],
+        1,
+        &format!("error: {}: the rows text is empty", p("empty.txt")),
+    );
+    std::fs::write(
+        p("rows.txt"),
+        "Start: (10,5). End: (10,5).\nStart: (9,6). End: 10,6\nStart: (8,7).\n",
+    )
+    .unwrap();
+    one_line_error(
+        &["check", "rows", &p("rows.txt"), "10,5", "5,10", "15,15"],
+        1,
+        &format!(
+            "error: {}: line 3: expected rows as 'Start: (x,y). End: (x,y).', found 2 numbers in 'Start: (8,7).'",
+            p("rows.txt")
+        ),
+    );
+    std::fs::write(p("one.txt"), "Start: (3,2). End: (3,2).\n").unwrap();
+    let o = rasterlab(&["check", "rows", &p("one.txt"), "3,2", "--json"]);
+    assert_eq!(
+        String::from_utf8_lossy(&o.stdout),
+        format!(
+            "{{\"file\":\"{}\",\"rows\":1,\"printed\":1,\"handout\":true,\"first_difference\":null,\"differing\":0,\"reproduced\":true,\"variants\":[]}}\n",
+            p("one.txt")
+        )
+    );
+    one_line_error(
+        &["check", "rows", &p("missing.txt"), "1,1", "2,2", "3,1"],
+        1,
+        &format!(
+            "error: cannot read {}: No such file or directory (os error 2)",
+            p("missing.txt")
+        ),
+    );
+}
+
+#[test]
+fn the_command_writes_json_a_heat_map_and_the_expected_image() {
+    let dir = temp_dir("check-cli");
+    let shot = dir.join("student.png");
+    let lab = Lab {
+        power: 5.1,
+        truncate: true,
+        ..Lab::handout(Shade::PerPixel)
+    };
+    let frame = student_lab(&lab);
+    image::save_buffer(
+        &shot,
+        &frame.to_rgb8(),
+        500,
+        500,
+        image::ExtendedColorType::Rgb8,
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let o = rasterlab(&[
+        "check",
+        shot.to_str().unwrap(),
+        "--json",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let json = String::from_utf8(o.stdout).unwrap();
+    for field in [
+        "\"lab3\":true,\"figure\":7,\"stage\":\"pixel-light\"",
+        "\"light_power\":5.1,\"indirect\":0.5,\"light\":[0,-0.5,-0.7]",
+        "\"variants\":[\"truncated-colours\"]",
+        "\"remaining\":\"none\"",
+    ] {
+        assert!(json.contains(field), "{field} in {json}");
+    }
+    assert_eq!(json.lines().count(), 1);
+    let heat = rasterlab::app::image_io::read_rgb_png(&out.join("student-heat.png")).unwrap();
+    assert_eq!(
+        (heat.0, heat.1),
+        (500, 584),
+        "the map with its title and scale"
+    );
+    let expected =
+        rasterlab::app::image_io::read_rgb_png(&out.join("student-expected.png")).unwrap();
+    let off = expected
+        .2
+        .iter()
+        .zip(frame.to_rgb8())
+        .filter(|(a, b)| a.abs_diff(*b) > 1)
+        .count();
+    assert_eq!(off, 0, "the explanation draws the screenshot within 1/255");
+    // In words, plain first.
+    let o = rasterlab(&["check", shot.to_str().unwrap(), "--stage", "pixel-light"]);
+    let text = String::from_utf8(o.stdout).unwrap();
+    assert_eq!(
+        text.lines().next().unwrap(),
+        "Your image is the handout's Figure 7 (light per pixel) at light power 5.1; colours are truncated to 8 bits instead of rounded. Every pixel matches within 1/255."
+    );
+}
+
+#[test]
+fn z_instead_of_one_over_z_differs_only_where_surfaces_meet() {
+    // In the box no surface passes through another, so interpolating z instead of
+    // 1/z only changes which of two touching surfaces wins along their shared
+    // edge, a tie that rounding decides: the interiors are Figure 5's exactly.
+    let c = check(&student_lab(&Lab {
+        depth: DepthTest::Z,
+        ..Lab::handout(Shade::Flat)
+    }));
+    let f = c.fitted.as_ref().unwrap();
+    assert_eq!(f.hypothesis.figure(), 5);
+    assert_eq!(f.errors.interior_rmse, 0.0);
+    assert_eq!(c.remaining.summary(), "edges");
+    assert!(
+        c.remaining.total > 0 && c.remaining.total < 1000,
+        "{}",
+        c.remaining.total
+    );
+}
+
+/// The student screenshot of docs/check.md: light per pixel at power 5.1 with
+/// the light 0.15 nearer the back wall than the skeleton's, colours truncated, and
+/// the projection truncating the whole sum.
+fn page_example() -> Frame {
+    student_lab(&Lab {
+        power: 5.1,
+        truncate: true,
+        projection_sum: true,
+        light: Vec3::new(0.0, -0.5, -0.55),
+        ..Lab::handout(Shade::PerPixel)
+    })
+}
+
+/// docs/check/student.png and docs/check/student-heat.png are what the code
+/// makes now; `RASTERLAB_UPDATE_DOCS=1 cargo test --release --test check` rewrites
+/// them (then paste the two reports of `rasterlab check docs/check/student.png`
+/// with and without --fit-light into docs/check.md).
+#[test]
+fn the_check_pages_pictures_are_current() {
+    use rasterlab::app::check::{check_image_file, CheckOptions};
+    use rasterlab::app::image_io::{read_rgb_png, write_png};
+    let docs = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/check"));
+    let shot = docs.join("student.png");
+    let frame = page_example();
+    let update = std::env::var_os("RASTERLAB_UPDATE_DOCS").is_some();
+    if update {
+        std::fs::create_dir_all(docs).unwrap();
+        write_png(&frame, &shot).unwrap();
+    }
+    let (w, h, committed) = read_rgb_png(&shot).unwrap();
+    assert!(
+        (w, h) == (500, 500) && committed == frame.to_rgb8(),
+        "{} is stale",
+        shot.display()
+    );
+    let dir = temp_dir("check-page");
+    let options = CheckOptions {
+        out: Some(dir.to_path_buf()),
+        ..CheckOptions::default()
+    };
+    // Without --fit-light the shade differs inside (the heat map on the page);
+    // with it, the light, the power and both variants are found.
+    let (report, _) = check_image_file(&shot, &options).unwrap();
+    let f = report.fitted.as_ref().unwrap();
+    assert_eq!(f.variants(), ["truncated-colours"]);
+    assert_eq!(report.remaining.summary(), "everywhere");
+    let searched = CheckOptions {
+        fit_light: true,
+        ..CheckOptions::default()
+    };
+    let (report, _) = check_image_file(&shot, &searched).unwrap();
+    let f = report.fitted.as_ref().unwrap();
+    assert_eq!(
+        f.variants(),
+        ["projection-sum-truncated", "truncated-colours"]
+    );
+    assert_eq!(f.light, Vec3::new(0.0, -0.5, -0.55));
+    assert_eq!(f.shading.power, 5.1);
+    assert_eq!(report.remaining.summary(), "none");
+    let heat = dir.join("student-heat.png");
+    if update {
+        std::fs::copy(&heat, docs.join("student-heat.png")).unwrap();
+    }
+    assert_eq!(
+        read_rgb_png(&heat).unwrap(),
+        read_rgb_png(&docs.join("student-heat.png")).unwrap(),
+        "docs/check/student-heat.png is stale"
+    );
+}
+
+#[test]
+fn a_bmp_screenshot_of_another_size_is_read() {
+    let dir = temp_dir("check-bmp");
+    let shot = dir.join("lab.bmp");
+    let frame = student_lab(&Lab {
+        width: 400,
+        height: 300,
+        focal: 300.0,
+        power: 15.1,
+        perspective: false,
+        ..Lab::handout(Shade::PerPixel)
+    });
+    image::save_buffer(
+        &shot,
+        &frame.to_rgb8(),
+        400,
+        300,
+        image::ExtendedColorType::Rgb8,
+    )
+    .unwrap();
+    let o = rasterlab(&[
+        "check",
+        shot.to_str().unwrap(),
+        "--json",
+        "--size",
+        "400x300",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let json = String::from_utf8(o.stdout).unwrap();
+    assert!(
+        json.contains("\"width\":400,\"height\":300,\"lab3\":true,\"figure\":8,\"stage\":\"pixel-light\",\"light_power\":15.1,"),
+        "{json}"
+    );
+}
+
+/// 24 labs with random sets of the differences (a fixed seed, so the same ones
+/// every run): each is recognised with exactly its variants and P within 1 %.
+#[test]
+#[allow(clippy::approx_constant)] // pi as 3.14 is one of the differences
+fn random_sets_of_differences_are_all_named() {
+    let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+    let mut failures = Vec::new();
+    for _ in 0..24 {
+        let mut r = |n: u32| noise(&mut seed) % n;
+        let shade = [Shade::Flat, Shade::PerVertex, Shade::PerPixel][r(3) as usize];
+        let mut lab = Lab::handout(shade);
+        lab.projection_sum = r(2) == 0;
+        lab.rounding = r(3) == 0;
+        lab.dy_sampling = r(3) == 0;
+        if shade == Shade::Flat {
+            if r(3) == 0 {
+                lab.depth = DepthTest::Painter;
+            }
+        } else {
+            lab.truncate = r(2) == 0;
+            lab.perspective = r(2) == 0;
+            lab.power = [1.1, 5.1, 9.1, 11.0, 14.1, 15.1][r(6) as usize];
+            if r(4) == 0 {
+                lab.pi = 3.14;
+            }
+            if r(4) == 0 {
+                lab.depth = DepthTest::Painter;
+            }
+        }
+        let mut want = Vec::new();
+        for (on, name) in [
+            (lab.projection_sum, "projection-sum-truncated"),
+            (lab.rounding, "rounding"),
+            (lab.dy_sampling, "dy-sampling"),
+            (
+                lab.depth == DepthTest::Painter && shade != Shade::Flat,
+                "no-depth-test",
+            ),
+            (
+                shade == Shade::PerVertex && lab.perspective,
+                "perspective-vertex-light",
+            ),
+            (lab.truncate, "truncated-colours"),
+            (lab.pi == 3.14, "pi-3.14"),
+        ] {
+            if on {
+                want.push(name);
+            }
+        }
+        let c = check(&student_lab(&lab));
+        let f = c.fitted.as_ref().expect("a lab 3 image");
+        let power_ok =
+            shade == Shade::Flat || (f.shading.power - lab.power).abs() <= 0.01 * lab.power;
+        if f.variants() != want || !power_ok || f.errors.off > 0.001 {
+            failures.push(format!(
+                "{lab:?}: {:?}, P {}, off {}",
+                f.variants(),
+                f.shading.power,
+                f.errors.off
+            ));
+        }
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+}
