@@ -404,6 +404,21 @@ fn framing_fills_the_view_and_scales_the_light() {
     assert!((q.camera / 1000.0 - p.camera).length() < 1e-3, "{q:?}");
     assert!((q.light / 1000.0 - p.light).length() < 1e-3);
     assert!((q.light_power / p.light_power / 1e6 - 1.0).abs() < 1e-3);
+    // The box's place for the light is inside a closed sphere: the light moves out
+    // along the same direction to 0.5 box units (scaled) beyond the sphere.
+    let scale = 1.0 / 3f32.sqrt();
+    let outside = glam::Vec3::new(0.0, -0.5, -0.7).normalize() * (1.0 + 0.5 * scale);
+    assert!((p.light - outside).length() < 1e-3, "{p:?}");
+    // The box read from its OBJ is a room open towards the camera: the light
+    // keeps the box's place, since no wall lies between it and the camera.
+    let room = parse_scene(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/docs/models/cornell.obj"
+    ))
+    .unwrap();
+    let r = framed_pose(&room, forward, 500.0, 500, 500);
+    assert_eq!(r.light, HANDOUT_POSE.light);
+    assert_eq!(r.light_power, HANDOUT_POSE.light_power);
 }
 
 /// The box written as OBJ by the design notes' rules renders every stage, with

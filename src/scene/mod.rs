@@ -5,6 +5,7 @@
 pub mod cornell;
 pub mod obj;
 pub mod procedural;
+pub mod ray;
 
 pub use cornell::{cornell_box, subdivide};
 pub use obj::{load_obj, write_obj};
@@ -103,12 +104,20 @@ pub const HANDOUT_POSE: Pose = Pose {
     light_power: 1.1,
 };
 
+/// How far the box's light hangs below the ceiling (box units): a light moved out
+/// of a closed model keeps this gap to the model's bounding sphere, scaled.
+const LIGHT_GAP: f32 = 0.5;
+
 /// The pose that frames `scene` for a camera looking along `forward` with focal
 /// length `focal` on a `width` x `height` image. The box keeps the handout's.
 /// Another scene's bounding sphere fills 90 % of the image's shorter side; the
 /// light sits where the box's sits relative to the box, scaled with the scene, and
 /// its power grows with the size squared (eq. 10 falls off as 1/r²), so a model in
-/// millimetres is lit as one in metres.
+/// millimetres is lit as one in metres. The box's light is inside the room, which
+/// is open towards the camera; inside a closed model it would light only the
+/// model's inside, so when a surface lies between that place and the camera the
+/// light moves out along the same direction from the centre to just outside the
+/// bounding sphere ([`LIGHT_GAP`] from it, scaled).
 pub fn framed_pose(scene: &Scene, forward: Vec3, focal: f32, width: u32, height: u32) -> Pose {
     if scene.is_box {
         return HANDOUT_POSE;
@@ -120,9 +129,21 @@ pub fn framed_pose(scene: &Scene, forward: Vec3, focal: f32, width: u32, height:
     let angle = (half / focal).atan();
     let distance = radius / (0.9 * angle.sin()).min(1.0);
     let scale = radius / box_radius;
+    let camera = centre - forward.normalize_or(Vec3::Z) * distance;
+    let offset = (HANDOUT_POSE.light - box_centre) * scale;
+    let mut light = centre + offset;
+    if hides(&scene.mesh, light, camera) {
+        light = centre + offset.normalize() * (radius + LIGHT_GAP * scale);
+    }
     Pose {
-        camera: centre - forward.normalize_or(Vec3::Z) * distance,
-        light: centre + (HANDOUT_POSE.light - box_centre) * scale,
+        camera,
+        light,
         light_power: HANDOUT_POSE.light_power * scale * scale,
     }
+}
+
+/// Whether a triangle of `mesh` lies on the segment from `light` to `camera`.
+fn hides(mesh: &Mesh, light: Vec3, camera: Vec3) -> bool {
+    mesh.triangles()
+        .any(|tri| ray::intersect(light, camera - light, &tri, 0.0).is_some_and(|t| t < 1.0))
 }
