@@ -8,6 +8,8 @@ use rasterlab::measure::figure::Raster;
 use rasterlab::measure::raytrace;
 use rasterlab::pipeline::draw::Cull;
 use rasterlab::pipeline::raster::Lines;
+use rasterlab::pipeline::Filter;
+use rasterlab::scene::texture::{apply_texture, TextureSpec};
 use rasterlab::scene::{framed_pose, parse_scene, write_obj, Scene};
 use rasterlab::{Figure, StageName};
 use std::path::PathBuf;
@@ -139,6 +141,23 @@ struct SceneArgs {
     #[arg(long, value_name = "N", value_parser = |s: &str| parse::whole(s, 1, 256),
           allow_hyphen_values = true)]
     threads: Option<u64>,
+    /// Lit stages only: read each surface's reflectance from a texture: checker
+    /// (a checker of each wall's colour; the box's blocks stay plain) or an image
+    /// PATH. A model's own MTL map_Kd is used without this.
+    #[arg(long, value_name = "checker|PATH")]
+    texture: Option<String>,
+    /// How textures are read between texels.
+    #[arg(long, value_enum, default_value = "nearest")]
+    filter: FilterArg,
+}
+
+/// How textures are read between texels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum FilterArg {
+    /// The texel containing the point.
+    Nearest,
+    /// The four nearest texel centres, weighted.
+    Bilinear,
 }
 
 impl SceneArgs {
@@ -146,7 +165,10 @@ impl SceneArgs {
     /// and where it gives no camera or light, the framing of the scene (printed, so
     /// the image can be made again with explicit options).
     fn resolve(&self) -> Result<(Scene, Settings), Failure> {
-        let scene = load_scene(&self.scene)?;
+        let mut scene = load_scene(&self.scene)?;
+        if let Some(spec) = &self.texture {
+            apply_texture(&mut scene, &TextureSpec::parse(spec)).map_err(Failure::Run)?;
+        }
         let mut settings = Settings {
             width: self.size.0,
             height: self.size.1,
@@ -159,6 +181,10 @@ impl SceneArgs {
             threads: self
                 .threads
                 .map_or_else(app::parallel::cores, |n| n as usize),
+            filter: match self.filter {
+                FilterArg::Nearest => Filter::Nearest,
+                FilterArg::Bilinear => Filter::Bilinear,
+            },
             ..Settings::default()
         };
         let forward = settings.camera().axes()[2];
@@ -853,6 +879,16 @@ fn refuse_unused_options(command: &str, m: &ArgMatches) -> Result<(), String> {
             }
             _ => {}
         }
+    }
+    if (given("texture") || given("filter")) && !(lit || command == "view") {
+        let id = if given("texture") {
+            "texture"
+        } else {
+            "filter"
+        };
+        return Err(format!(
+            "--{id} does nothing for {what}: only vertex-light and pixel-light (and the viewer) read textures"
+        ));
     }
     if command == "raytrace" {
         for id in ["raster", "cull", "stats", "buffer", "threads", "lines"] {

@@ -57,10 +57,8 @@ fn view() -> impl Strategy<Value = Figure> {
     prop::sample::select(Figure::FIGURES.to_vec())
 }
 
-fn uniforms() -> Uniforms {
-    Uniforms {
-        light: Light::handout(),
-    }
+fn uniforms() -> Uniforms<'static> {
+    Uniforms::lit(Light::handout())
 }
 
 fn draw(view: Figure, scene: &[Triangle], camera: &Camera) -> Frame {

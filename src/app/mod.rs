@@ -20,7 +20,7 @@ use crate::pipeline::draw::Stats;
 use crate::pipeline::interpolate::Pixel;
 use crate::pipeline::raster::rows::{compute_polygon_rows, Rows};
 use crate::pipeline::raster::Bounds;
-use crate::pipeline::{Camera, Frame, Light, Mesh, Uniforms};
+use crate::pipeline::{Camera, Filter, Frame, Light, Mesh, Uniforms};
 use crate::scene::Scene;
 use glam::Vec3;
 use image_io::{write_png, write_text, WriteError};
@@ -51,6 +51,8 @@ pub struct Settings {
     /// Threads that draw bands of the image (`--threads`); the image is the same
     /// for any number.
     pub threads: usize,
+    /// How textures are read between texels (`--filter`).
+    pub filter: Filter,
 }
 
 impl Default for Settings {
@@ -70,6 +72,7 @@ impl Default for Settings {
             near: DEFAULT_NEAR,
             clip: true,
             threads: 1,
+            filter: Filter::Nearest,
         }
     }
 }
@@ -95,9 +98,19 @@ impl Settings {
         }
     }
 
-    pub fn uniforms(&self) -> Uniforms {
+    /// The light alone, for a mesh without textures.
+    pub fn uniforms(&self) -> Uniforms<'static> {
         Uniforms {
-            light: self.light(),
+            filter: self.filter,
+            ..Uniforms::lit(self.light())
+        }
+    }
+
+    /// The light, and the textures of `mesh` read with `--filter`.
+    pub fn uniforms_for<'a>(&self, mesh: &'a Mesh) -> Uniforms<'a> {
+        Uniforms {
+            textures: &mesh.textures,
+            ..self.uniforms()
         }
     }
 }
@@ -121,7 +134,7 @@ pub fn render_with_stats(
     settings: &Settings,
     runs: Option<usize>,
 ) -> (Frame, Option<Timing>, Stats) {
-    let (camera, uniforms) = (settings.camera(), settings.uniforms());
+    let (camera, uniforms) = (settings.camera(), settings.uniforms_for(mesh));
     // No threads to be had: one band, on this thread.
     let mut pipeline = parallel::Parallel::new(figure, mesh, settings.threads)
         .or_else(|_| parallel::Parallel::new(figure, mesh, 1))
@@ -178,7 +191,7 @@ pub fn build_up(figure: Figure, mesh: &Mesh, settings: &Settings, max_frames: us
     let mut pipeline = parallel::Parallel::new(figure, mesh, settings.threads)
         .or_else(|_| parallel::Parallel::new(figure, mesh, 1))
         .expect("one band needs no thread");
-    let (camera, uniforms) = (settings.camera(), settings.uniforms());
+    let (camera, uniforms) = (settings.camera(), settings.uniforms_for(mesh));
     // One copy of the mesh whose faces grow: no copy of the vertices per frame.
     let mut prefix = Mesh {
         faces: Vec::with_capacity(faces),

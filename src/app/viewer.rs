@@ -272,7 +272,12 @@ pub fn run(options: Options) -> Result<Summary, String> {
         }
 
         let draw_start = Instant::now();
-        pipeline.render(&scene, &settings.camera(), &settings.uniforms(), &mut frame);
+        pipeline.render(
+            &scene,
+            &settings.camera(),
+            &settings.uniforms_for(&scene),
+            &mut frame,
+        );
         let draw = draw_start.elapsed();
         all_draws.push(draw);
         window

@@ -3,7 +3,9 @@
 
 use crate::pipeline::draw::Cull;
 use crate::pipeline::raster::{EdgeRaster, Lines, Rasterizer, RowRaster};
-use crate::pipeline::stage::SmoothPixelLight;
+use crate::pipeline::stage::{
+    SmoothPixelLight, SmoothTexturedPixelLight, TexturedPixelLight, TexturedVertexLight,
+};
 use crate::pipeline::{
     Affine, Camera, Depth, Filled, Frame, Interpolation, Mesh, Perspective, Pipeline, PixelLight,
     Points, Render, Stage, Uniforms, VertexLight, Wireframe,
@@ -92,20 +94,45 @@ pub trait WithStage {
     fn with<S: Stage, I: Interpolation, R: Rasterizer>(self) -> Self::Output;
 }
 
-/// The stage type for `stage`: light per pixel on a mesh with vertex normals is
-/// [`SmoothPixelLight`], chosen here once, never per pixel.
+/// What a mesh has that a stage may carry to its pixels.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Attributes {
+    /// Vertex normals, for smooth light per pixel.
+    pub normals: bool,
+    /// Texture coordinates and a material with a texture, for the lit stages to
+    /// read ρ from.
+    pub texture: bool,
+}
+
+impl Attributes {
+    pub fn of(mesh: &Mesh) -> Attributes {
+        Attributes {
+            normals: !mesh.normals.is_empty(),
+            texture: !mesh.uvs.is_empty() && mesh.materials.iter().any(|m| m.texture.is_some()),
+        }
+    }
+}
+
+/// The stage type for `stage` and a mesh with `attributes`, chosen here once,
+/// never per pixel: light per pixel on a mesh with vertex normals is
+/// [`SmoothPixelLight`]; a textured mesh's lit stages interpolate texture
+/// coordinates, and only then.
 fn with_types<I: Interpolation, R: Rasterizer, W: WithStage>(
     stage: StageName,
-    smooth: bool,
+    attributes: Attributes,
     w: W,
 ) -> W::Output {
+    let Attributes { normals, texture } = attributes;
     match stage {
         StageName::Points => w.with::<Points, I, R>(),
         StageName::Wireframe => w.with::<Wireframe, I, R>(),
         StageName::Filled => w.with::<Filled, I, R>(),
         StageName::Depth => w.with::<Depth, I, R>(),
+        StageName::VertexLight if texture => w.with::<TexturedVertexLight, I, R>(),
         StageName::VertexLight => w.with::<VertexLight, I, R>(),
-        StageName::PixelLight if smooth => w.with::<SmoothPixelLight, I, R>(),
+        StageName::PixelLight if normals && texture => w.with::<SmoothTexturedPixelLight, I, R>(),
+        StageName::PixelLight if normals => w.with::<SmoothPixelLight, I, R>(),
+        StageName::PixelLight if texture => w.with::<TexturedPixelLight, I, R>(),
         StageName::PixelLight => w.with::<PixelLight, I, R>(),
     }
 }
@@ -246,23 +273,23 @@ impl Figure {
     }
 
     /// Calls `w` with this figure's stage, interpolation and rasterizer types, for
-    /// a mesh that has vertex normals when `smooth`.
-    pub fn with_stage<W: WithStage>(self, smooth: bool, w: W) -> W::Output {
+    /// a mesh with `attributes`.
+    pub fn with_stage<W: WithStage>(self, attributes: Attributes, w: W) -> W::Output {
+        let (stage, a) = (self.stage, attributes);
         match (self.affine, self.raster) {
-            (false, Raster::Rows) => with_types::<Perspective, RowRaster, W>(self.stage, smooth, w),
-            (true, Raster::Rows) => with_types::<Affine, RowRaster, W>(self.stage, smooth, w),
-            (false, Raster::Edge) => {
-                with_types::<Perspective, EdgeRaster, W>(self.stage, smooth, w)
-            }
-            (true, Raster::Edge) => with_types::<Affine, EdgeRaster, W>(self.stage, smooth, w),
+            (false, Raster::Rows) => with_types::<Perspective, RowRaster, W>(stage, a, w),
+            (true, Raster::Rows) => with_types::<Affine, RowRaster, W>(stage, a, w),
+            (false, Raster::Edge) => with_types::<Perspective, EdgeRaster, W>(stage, a, w),
+            (true, Raster::Edge) => with_types::<Affine, EdgeRaster, W>(stage, a, w),
         }
     }
 
     /// The pipeline that draws this figure of `mesh`: the stage types fit the
-    /// mesh's attributes (smooth light where it has vertex normals).
+    /// mesh's attributes (smooth light where it has vertex normals, texture
+    /// coordinates where it has a texture).
     pub fn pipeline_for(self, mesh: &Mesh) -> Box<dyn Render + Send> {
         self.with_stage(
-            !mesh.normals.is_empty(),
+            Attributes::of(mesh),
             NewPipeline {
                 cull: self.cull,
                 lines: self.lines,

@@ -226,9 +226,7 @@ mod tests {
             glam::Vec3::ONE,
         );
         let mesh = Mesh::from_triangles(&[tri]);
-        let uniforms = crate::pipeline::Uniforms {
-            light: crate::pipeline::Light::handout(),
-        };
+        let uniforms = crate::pipeline::Uniforms::lit(crate::pipeline::Light::handout());
         let frame = crate::measure::figure::Figure::of(crate::measure::figure::StageName::Points)
             .render(&mesh, &camera, &uniforms);
         assert_eq!(frame.color.iter().filter(|&&c| c != 0).count(), 3);

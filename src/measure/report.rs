@@ -230,9 +230,7 @@ pub fn measure_all(
 ) -> Vec<Row> {
     let base = &scene.mesh;
     let pose = *pose;
-    let uniforms = Uniforms {
-        light: light_for(&pose),
-    };
+    let uniforms = Uniforms::lit(light_for(&pose));
     let plan_ks: &[u32] = if scene.is_box { &plan.ks } else { &[1] };
     let mut rows = Vec::new();
     let mut sizes = plan.sizes.clone();
@@ -480,7 +478,7 @@ pub fn heat_maps(plan: &Plan, scene: &Scene, pose: &Pose) -> Vec<(String, Frame)
     let size = conclusion_size(plan);
     let pose = *pose;
     let (mesh, camera, light) = (&scene.mesh, camera_for(size, &pose), light_for(&pose));
-    let uniforms = Uniforms { light };
+    let uniforms = Uniforms::lit(light);
     let reference = raytrace(mesh, &camera, &light, &Options::default()).frame;
     let mut out = Vec::new();
     let lit = measured_figures()

@@ -4,7 +4,7 @@
 //! each drawn by the core with every pixel checked for NaN and infinity, compared
 //! with the ray tracer where that means something, and timed.
 
-use crate::measure::figure::{Figure, StageName, WithStage};
+use crate::measure::figure::{Attributes, Figure, StageName, WithStage};
 use crate::measure::metrics::{differing_fraction, image_error, interior_mask};
 use crate::measure::raytrace::{self, raytrace, Shading};
 use crate::measure::report::INTERIOR_MARGIN;
@@ -59,7 +59,7 @@ impl<S: Stage> Stage for Checked<S> {
 struct DrawChecked<'a> {
     scene: &'a Mesh,
     camera: &'a Camera,
-    uniforms: &'a Uniforms,
+    uniforms: &'a Uniforms<'a>,
     runs: usize,
 }
 
@@ -490,10 +490,10 @@ pub fn run(case: &Case, runs: usize) -> Outcome {
         let draw = DrawChecked {
             scene: &case.scene,
             camera: &case.camera,
-            uniforms: &Uniforms { light: case.light },
+            uniforms: &Uniforms::lit(case.light),
             runs,
         };
-        case.view.with_stage(!case.scene.normals.is_empty(), draw)
+        case.view.with_stage(Attributes::of(&case.scene), draw)
     }));
     let mut outcome = Outcome {
         name: case.name.clone(),

@@ -594,7 +594,7 @@ mod tests {
         Pipeline::<PixelLight, Perspective>::new().render(
             &mesh,
             &camera,
-            &Uniforms { light },
+            &Uniforms::lit(light),
             &mut frame,
         );
         let mut worst = 0u8;
@@ -645,9 +645,7 @@ mod tests {
         mesh.push_triangle(tilted, face_normal(tilted), red);
         let front = [(-1.0, 0.0, 1.0), (1.0, 0.2, 1.0), (0.0, 1.0, 1.0)].map(Vec3::from);
         mesh.push_triangle(front, -Vec3::Z, Vec3::ONE);
-        let uniforms = Uniforms {
-            light: Light::handout(),
-        };
+        let uniforms = Uniforms::lit(Light::handout());
         for affine in [false, true] {
             let (mut batched, mut immediate) = (Frame::default(), Frame::default());
             if affine {
@@ -688,9 +686,7 @@ mod tests {
             color: None,
             depth: Some(&mut depth),
         };
-        let uniforms = Uniforms {
-            light: Light::handout(),
-        };
+        let uniforms = Uniforms::lit(Light::handout());
         Pipeline::<Depth>::new().draw(&mesh, &camera, &uniforms, &mut target);
         // 1/z = 1/2 everywhere, up to the running sums' rounding.
         assert!(

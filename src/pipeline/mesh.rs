@@ -5,6 +5,7 @@
 //! `Triangle::normal`) and its material (the handout's `Triangle::color`, the
 //! reflectance ρ of eq. 11).
 
+use super::texture::Texture;
 use glam::{Vec2, Vec3};
 
 /// What a surface is made of.
@@ -12,6 +13,19 @@ use glam::{Vec2, Vec3};
 pub struct Material {
     /// The diffuse reflectance ρ of eq. 11, linear, per channel in [0, 1].
     pub color: Vec3,
+    /// Index into [`Mesh::textures`]: where the mesh has texture coordinates, ρ
+    /// is read from this texture instead of `color` (an OBJ's `map_Kd`).
+    pub texture: Option<u32>,
+}
+
+impl Material {
+    /// A material of one colour, without a texture.
+    pub const fn plain(color: Vec3) -> Material {
+        Material {
+            color,
+            texture: None,
+        }
+    }
 }
 
 /// A triangle of the mesh: three indices into the vertex lists, in drawing order.
@@ -44,6 +58,8 @@ pub struct Mesh {
     pub uvs: Vec<Vec2>,
     pub faces: Vec<Face>,
     pub materials: Vec<Material>,
+    /// The images materials read ρ from.
+    pub textures: Vec<Texture>,
 }
 
 /// A face with its corners and material resolved: the handout's `Triangle`, which
@@ -94,10 +110,14 @@ impl Mesh {
     /// Adds a triangle with its own three vertices, its face normal and a material
     /// of colour `color` (shared with earlier faces of the same colour).
     pub fn push_triangle(&mut self, corners: [Vec3; 3], normal: Vec3, color: Vec3) {
-        let material = match self.materials.iter().position(|m| m.color == color) {
+        let material = match self
+            .materials
+            .iter()
+            .position(|m| *m == Material::plain(color))
+        {
             Some(i) => i,
             None => {
-                self.materials.push(Material { color });
+                self.materials.push(Material::plain(color));
                 self.materials.len() - 1
             }
         } as u32;

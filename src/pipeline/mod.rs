@@ -15,6 +15,7 @@
 //!   `ComputePolygonRows` and `DrawPolygonRows`.
 //! - [`interpolate`](mod@interpolate): `Interpolate` for any per-pixel struct, and
 //!   perspective-correct or affine interpolation.
+//! - [`texture`]: images that a material's reflectance is read from.
 //! - [`target`]: colour and depth buffers over a band of rows, and 8-bit packing.
 //! - [`draw`]: the handout's `Draw` and `DrawPolygon`, which joins them.
 //!
@@ -29,6 +30,7 @@ pub mod mesh;
 pub mod raster;
 pub mod stage;
 pub mod target;
+pub mod texture;
 
 pub use camera::Camera;
 pub use draw::{Pipeline, Render};
@@ -38,3 +40,4 @@ pub use mesh::{Face, Material, Mesh, Triangle, Vertex};
 pub use raster::RowRaster;
 pub use stage::{Depth, Filled, PixelLight, Points, Stage, Uniforms, VertexLight, Wireframe};
 pub use target::{Frame, Target};
+pub use texture::{Filter, Texture};

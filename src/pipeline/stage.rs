@@ -12,11 +12,15 @@
 //! | [`VertexLight`] | 6.1 | polygons | yes | [`Illumination`]: eq. 11 at the vertices |
 //! | [`PixelLight`] | 6.2 | polygons | yes | [`Position`]: the 3D position |
 //! | [`SmoothPixelLight`] | 6.2, for meshes with vertex normals | polygons | yes | [`SmoothSurface`]: the 3D position and the normal |
+//! | [`TexturedVertexLight`] | 6.1, with a texture | polygons | yes | [`IlluminationUv`]: the light and the texture coordinate |
+//! | [`TexturedPixelLight`] | 6.2, with a texture | polygons | yes | [`PositionUv`]: the 3D position and the texture coordinate |
+//! | [`SmoothTexturedPixelLight`] | 6.2, with vertex normals and a texture | polygons | yes | [`SmoothSurfaceUv`] |
 
 use super::interpolate::{linear_ops, Nothing, Varying};
 use super::light::Light;
 use super::mesh::{Material, Vertex};
-use glam::Vec3;
+use super::texture::{Filter, Texture};
+use glam::{Vec2, Vec3};
 
 /// What a stage draws for each triangle.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -31,8 +35,35 @@ pub enum Primitive {
 
 /// Scene-wide inputs of the shaders, the same for every vertex and pixel of a frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Uniforms {
+pub struct Uniforms<'a> {
     pub light: Light,
+    /// The mesh's textures, which [`Material::texture`] indexes.
+    pub textures: &'a [Texture],
+    /// How textures are read between texels.
+    pub filter: Filter,
+}
+
+impl Uniforms<'static> {
+    /// Just the light: no textures.
+    pub const fn lit(light: Light) -> Self {
+        Uniforms {
+            light,
+            textures: &[],
+            filter: Filter::Nearest,
+        }
+    }
+}
+
+impl Uniforms<'_> {
+    /// The reflectance ρ of eq. 11 at texture coordinate `uv`: the material's
+    /// texture there, or its colour if it has none.
+    #[inline]
+    pub fn reflectance(&self, material: &Material, uv: Vec2) -> Vec3 {
+        match material.texture.and_then(|i| self.textures.get(i as usize)) {
+            Some(texture) => texture.sample(uv, self.filter),
+            None => material.color,
+        }
+    }
 }
 
 /// The triangle being drawn, as its shaders see it: the handout's `currentNormal`
@@ -231,6 +262,108 @@ impl Stage for SmoothPixelLight {
     #[inline]
     fn pixel_shader(varying: &SmoothSurface, surface: &Surface, uniforms: &Uniforms) -> Vec3 {
         let rho = surface.material.color;
+        let normal = varying.normal.normalize_or_zero();
+        uniforms.light.reflected(varying.world, normal, rho)
+    }
+}
+
+/// Section 6.1 with a texture: the light arriving at each vertex (eq. 10 and 11
+/// with ρ = 1) and the texture coordinate are interpolated, and each pixel
+/// multiplies the light by the reflectance its texture gives there.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct TexturedVertexLight;
+
+/// [`TexturedVertexLight`]'s per-pixel struct.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct IlluminationUv {
+    /// The light eq. 11 reflects from a white surface.
+    pub light: Vec3,
+    pub uv: Vec2,
+}
+
+linear_ops!(IlluminationUv { light, uv });
+
+impl Stage for TexturedVertexLight {
+    type Varying = IlluminationUv;
+    const PRIMITIVE: Primitive = Primitive::Polygons;
+    const DEPTH_TEST: bool = true;
+
+    fn vertex_shader(vertex: &Vertex, _: &Surface, uniforms: &Uniforms) -> IlluminationUv {
+        IlluminationUv {
+            light: uniforms
+                .light
+                .reflected(vertex.position, vertex.normal, Vec3::ONE),
+            uv: vertex.uv,
+        }
+    }
+
+    fn pixel_shader(varying: &IlluminationUv, surface: &Surface, uniforms: &Uniforms) -> Vec3 {
+        uniforms.reflectance(&surface.material, varying.uv) * varying.light
+    }
+}
+
+/// [`TexturedPixelLight`]'s per-pixel struct: the 3D position and the texture
+/// coordinate.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PositionUv {
+    pub world: Vec3,
+    pub uv: Vec2,
+}
+
+linear_ops!(PositionUv { world, uv });
+
+/// Section 6.2 with a texture: as [`PixelLight`], with ρ read from the material's
+/// texture at the interpolated texture coordinate.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct TexturedPixelLight;
+
+impl Stage for TexturedPixelLight {
+    type Varying = PositionUv;
+    const PRIMITIVE: Primitive = Primitive::Polygons;
+    const DEPTH_TEST: bool = true;
+
+    fn vertex_shader(vertex: &Vertex, _: &Surface, _: &Uniforms) -> PositionUv {
+        PositionUv {
+            world: vertex.position,
+            uv: vertex.uv,
+        }
+    }
+
+    fn pixel_shader(varying: &PositionUv, surface: &Surface, uniforms: &Uniforms) -> Vec3 {
+        let rho = uniforms.reflectance(&surface.material, varying.uv);
+        uniforms.light.reflected(varying.world, surface.normal, rho)
+    }
+}
+
+/// [`SmoothTexturedPixelLight`]'s per-pixel struct.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SmoothSurfaceUv {
+    pub world: Vec3,
+    pub normal: Vec3,
+    pub uv: Vec2,
+}
+
+linear_ops!(SmoothSurfaceUv { world, normal, uv });
+
+/// [`SmoothPixelLight`] with a texture.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct SmoothTexturedPixelLight;
+
+impl Stage for SmoothTexturedPixelLight {
+    type Varying = SmoothSurfaceUv;
+    const PRIMITIVE: Primitive = Primitive::Polygons;
+    const DEPTH_TEST: bool = true;
+
+    fn vertex_shader(vertex: &Vertex, _: &Surface, _: &Uniforms) -> SmoothSurfaceUv {
+        SmoothSurfaceUv {
+            world: vertex.position,
+            normal: vertex.normal,
+            uv: vertex.uv,
+        }
+    }
+
+    fn pixel_shader(varying: &SmoothSurfaceUv, surface: &Surface, uniforms: &Uniforms) -> Vec3 {
+        let rho = uniforms.reflectance(&surface.material, varying.uv);
         let normal = varying.normal.normalize_or_zero();
         uniforms.light.reflected(varying.world, normal, rho)
     }

@@ -6,6 +6,7 @@ pub mod cornell;
 pub mod obj;
 pub mod procedural;
 pub mod ray;
+pub mod texture;
 
 pub use cornell::{cornell_box, subdivide};
 pub use obj::{load_obj, write_obj};

@@ -21,6 +21,9 @@
 //!   coordinates (v up, as written) when every vertex has one; otherwise none are,
 //!   and the face normals light the model. A zero vertex normal takes the normal of
 //!   the first face that uses it.
+//! - A material's `map_Kd` image (read relative to the OBJ file's folder) is its
+//!   texture: where the model has texture coordinates, ρ is read from it instead
+//!   of `Kd`. An image that cannot be read is an error naming it.
 //! - Errors are one line naming the file and, where it is known, the line.
 //!   Points and lines (`f 1`, `f 1 2`, `l 1 2`) are skipped.
 
@@ -85,7 +88,37 @@ pub fn load_obj(path: &Path) -> Result<Mesh, String> {
         return Err(fail(why));
     }
     let materials = materials.unwrap_or_default();
-    to_mesh(&models, &materials).map_err(fail)
+    let mut mesh = to_mesh(&models, &materials).map_err(fail)?;
+    load_diffuse_textures(&mut mesh, &materials, dir).map_err(fail)?;
+    Ok(mesh)
+}
+
+/// Each material's `map_Kd` image, read relative to the OBJ file's folder, as
+/// that material's texture (shared by the materials that name the same file).
+fn load_diffuse_textures(
+    mesh: &mut Mesh,
+    materials: &[tobj::Material],
+    dir: &Path,
+) -> Result<(), String> {
+    let mut loaded: HashMap<&str, u32> = HashMap::new();
+    for (i, m) in materials.iter().enumerate() {
+        let Some(name) = m.diffuse_texture.as_deref() else {
+            continue;
+        };
+        let index = match loaded.get(name) {
+            Some(&index) => index,
+            None => {
+                let texture = super::texture::load_texture(&dir.join(name))
+                    .map_err(|e| format!("material {}: map_Kd: {e}", m.name))?;
+                mesh.textures.push(texture);
+                let index = mesh.textures.len() as u32 - 1;
+                loaded.insert(name, index);
+                index
+            }
+        };
+        mesh.materials[i].texture = Some(index);
+    }
+    Ok(())
 }
 
 /// Reads one MTL file; the error names it and, where known, the line.
@@ -109,10 +142,11 @@ fn to_mesh(models: &[tobj::Model], materials: &[tobj::Material]) -> Result<Mesh,
     let mut mesh = Mesh {
         materials: materials
             .iter()
-            .map(|m| Material {
-                color: m
-                    .diffuse
-                    .map_or(WHITE, |kd| Vec3::from(kd).clamp(Vec3::ZERO, Vec3::ONE)),
+            .map(|m| {
+                Material::plain(
+                    m.diffuse
+                        .map_or(WHITE, |kd| Vec3::from(kd).clamp(Vec3::ZERO, Vec3::ONE)),
+                )
             })
             .collect(),
         ..Mesh::default()
@@ -142,7 +176,7 @@ fn to_mesh(models: &[tobj::Model], materials: &[tobj::Material]) -> Result<Mesh,
         let material = match m.material_id {
             Some(i) if i < materials.len() => i as u32,
             _ => *default.get_or_insert_with(|| {
-                mesh.materials.push(Material { color: WHITE });
+                mesh.materials.push(Material::plain(WHITE));
                 mesh.materials.len() as u32 - 1
             }),
         };

@@ -227,14 +227,12 @@ fn draw<S: Stage, I: Interpolation>(mesh: &Mesh, camera: &Camera, uniforms: &Uni
 }
 
 /// The light with power 1 and no indirect light: what the lit passes draw with.
-fn unit_light(position: Vec3) -> Uniforms {
-    Uniforms {
-        light: Light {
-            position,
-            power: Vec3::ONE,
-            indirect: Vec3::ZERO,
-        },
-    }
+fn unit_light(position: Vec3) -> Uniforms<'static> {
+    Uniforms::lit(Light {
+        position,
+        power: Vec3::ONE,
+        indirect: Vec3::ZERO,
+    })
 }
 
 /// The direct light per unit power at each pixel, as `h` interpolates it.

@@ -230,9 +230,7 @@ mod tests {
         use crate::pipeline::{Camera, Depth, Perspective};
         use crate::pipeline::{Frame, Light, Pipeline, PixelLight, Render, Wireframe};
         let (mesh, camera) = (crate::scene::cornell_box(), Camera::handout(200, 150));
-        let uniforms = Uniforms {
-            light: Light::handout(),
-        };
+        let uniforms = Uniforms::lit(Light::handout());
         fn both<S: Stage>(mesh: &crate::pipeline::Mesh, c: &Camera, u: &Uniforms) -> [Frame; 2] {
             let (mut core, mut student) = (Frame::default(), Frame::default());
             Pipeline::<S, Perspective>::new().render(mesh, c, u, &mut core);

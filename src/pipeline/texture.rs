@@ -1,0 +1,129 @@
+//! Textures: an image of reflectances that a material's ρ (eq. 11) is read from,
+//! addressed by texture coordinates as the design notes define them (v up, rows
+//! stored top first, coordinates outside [0, 1] repeating).
+
+use glam::{Vec2, Vec3};
+
+/// How a texture is read between its texels (`--filter`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Filter {
+    /// The texel whose square contains the point.
+    #[default]
+    Nearest,
+    /// The four texel centres around the point, weighted by distance.
+    Bilinear,
+}
+
+/// A W x H image of linear reflectances in [0, 1], rows stored top first.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Texture {
+    width: u32,
+    height: u32,
+    texels: Vec<Vec3>,
+}
+
+impl Texture {
+    /// A texture of `width` x `height` texels; `None` if either is 0 or `texels`
+    /// does not hold exactly that many.
+    pub fn new(width: u32, height: u32, texels: Vec<Vec3>) -> Option<Texture> {
+        let count = (width as usize).checked_mul(height as usize)?;
+        (width > 0 && height > 0 && texels.len() == count).then_some(Texture {
+            width,
+            height,
+            texels,
+        })
+    }
+
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    /// The texel at column `x`, row `y` (from the top), both repeating.
+    #[inline]
+    fn texel(&self, x: i64, y: i64) -> Vec3 {
+        let x = x.rem_euclid(self.width as i64) as usize;
+        let y = y.rem_euclid(self.height as i64) as usize;
+        self.texels[y * self.width as usize + x]
+    }
+
+    /// The reflectance at texture coordinate `uv`: the point `(u W, (1 - v) H)` of
+    /// the image, read with `filter`.
+    pub fn sample(&self, uv: Vec2, filter: Filter) -> Vec3 {
+        // Only the fraction matters (the texture repeats); taking it first keeps
+        // the image coordinates small and exact.
+        let (u, v) = (uv.x - uv.x.floor(), uv.y - uv.y.floor());
+        let x = u * self.width as f32;
+        let y = (1.0 - v) * self.height as f32;
+        match filter {
+            Filter::Nearest => self.texel(x.floor() as i64, y.floor() as i64),
+            Filter::Bilinear => {
+                // Texel centres sit at half-integers: measure from them.
+                let (x, y) = (x - 0.5, y - 0.5);
+                let (x0, y0) = (x.floor(), y.floor());
+                let (fx, fy) = (x - x0, y - y0);
+                let (i, j) = (x0 as i64, y0 as i64);
+                let top = self.texel(i, j).lerp(self.texel(i + 1, j), fx);
+                let bottom = self.texel(i, j + 1).lerp(self.texel(i + 1, j + 1), fx);
+                top.lerp(bottom, fy)
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// 2 x 2: black, white on the top row; red, green below.
+    fn four() -> Texture {
+        let texels = vec![Vec3::ZERO, Vec3::ONE, Vec3::X, Vec3::Y];
+        Texture::new(2, 2, texels).unwrap()
+    }
+
+    #[test]
+    fn nearest_takes_the_texel_containing_the_point_with_v_up() {
+        let t = four();
+        // v near 1 is the top row; u near 0 the left column.
+        assert_eq!(t.sample(Vec2::new(0.1, 0.9), Filter::Nearest), Vec3::ZERO);
+        assert_eq!(t.sample(Vec2::new(0.9, 0.9), Filter::Nearest), Vec3::ONE);
+        assert_eq!(t.sample(Vec2::new(0.1, 0.1), Filter::Nearest), Vec3::X);
+        assert_eq!(t.sample(Vec2::new(0.9, 0.1), Filter::Nearest), Vec3::Y);
+        // Repeats outside [0, 1], on both sides.
+        assert_eq!(t.sample(Vec2::new(1.1, -0.1), Filter::Nearest), Vec3::ZERO);
+        assert_eq!(t.sample(Vec2::new(-0.1, 2.1), Filter::Nearest), Vec3::Y);
+    }
+
+    #[test]
+    fn bilinear_weights_the_four_centres_around_the_point() {
+        let t = four();
+        // At a texel's centre, that texel.
+        assert_eq!(
+            t.sample(Vec2::new(0.25, 0.75), Filter::Bilinear),
+            Vec3::ZERO
+        );
+        assert_eq!(t.sample(Vec2::new(0.75, 0.25), Filter::Bilinear), Vec3::Y);
+        // Midway between all four centres: their mean.
+        let mid = t.sample(Vec2::new(0.5, 0.5), Filter::Bilinear);
+        assert!((mid - Vec3::new(0.5, 0.5, 0.25)).length() < 1e-6, "{mid}");
+        // On the image's edge, the repeat blends in the opposite side: u = 0 is
+        // midway between the right column's centre and the left one's.
+        let edge = t.sample(Vec2::new(0.0, 0.75), Filter::Bilinear);
+        assert!((edge - Vec3::splat(0.5)).length() < 1e-6, "{edge}");
+    }
+
+    #[test]
+    fn bad_coordinates_and_sizes_do_not_panic() {
+        let t = four();
+        for uv in [Vec2::NAN, Vec2::INFINITY, Vec2::new(1e30, -1e30)] {
+            for f in [Filter::Nearest, Filter::Bilinear] {
+                let _ = t.sample(uv, f);
+            }
+        }
+        assert!(Texture::new(0, 2, vec![]).is_none());
+        assert!(Texture::new(2, 2, vec![Vec3::ONE; 3]).is_none());
+    }
+}

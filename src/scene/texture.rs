@@ -1,0 +1,222 @@
+//! Textures for a scene (`--texture checker|PATH`): a procedural checker, images
+//! read with `image`, and texture coordinates from a mesh's own geometry where it
+//! has none.
+
+use super::Scene;
+use crate::pipeline::{Material, Mesh, Texture};
+use glam::{Vec2, Vec3};
+use std::path::Path;
+
+/// Squares along each side of the checker: one texel each, so nearest and
+/// bilinear sampling differ visibly.
+pub const CHECKER_SQUARES: u32 = 8;
+
+/// How dark the checker's dark squares are, as a fraction of the colour.
+const CHECKER_DARK: f32 = 0.25;
+
+/// What `--texture` names.
+#[derive(Clone, Debug, PartialEq)]
+pub enum TextureSpec {
+    /// Each textured material gets a checker of its own colour and a darker one.
+    Checker,
+    /// An image file, the same for every textured material.
+    Image(std::path::PathBuf),
+}
+
+impl TextureSpec {
+    pub fn parse(spec: &str) -> TextureSpec {
+        match spec {
+            "checker" => TextureSpec::Checker,
+            path => TextureSpec::Image(path.into()),
+        }
+    }
+}
+
+/// A checker of [`CHECKER_SQUARES`]² texels in `color` and a darker shade of it.
+pub fn checker(color: Vec3) -> Texture {
+    let n = CHECKER_SQUARES;
+    let texels = (0..n * n)
+        .map(|i| {
+            let dark = (i % n + i / n) % 2 == 1;
+            if dark {
+                color * CHECKER_DARK
+            } else {
+                color
+            }
+        })
+        .collect();
+    Texture::new(n, n, texels).expect("a non-empty square")
+}
+
+/// The image at `path` as a texture of linear reflectances (each 8-bit channel
+/// over 255). The error is one line naming the file.
+pub fn load_texture(path: &Path) -> Result<Texture, String> {
+    let shown = path.display();
+    let image = image::ImageReader::open(path)
+        .map_err(|e| format!("texture {shown}: {e}"))?
+        .with_guessed_format()
+        .map_err(|e| format!("texture {shown}: {e}"))?
+        .decode()
+        .map_err(|e| format!("texture {shown}: {e}"))?
+        .to_rgb8();
+    let (width, height) = image.dimensions();
+    let texels = image
+        .pixels()
+        .map(|p| Vec3::from(p.0.map(|c| c as f32 / 255.0)))
+        .collect();
+    Texture::new(width, height, texels)
+        .ok_or_else(|| format!("texture {shown}: the image is empty"))
+}
+
+/// Gives `scene` the texture `spec` names: on the Cornell box its walls, floor
+/// and ceiling (the blocks keep their colours); on any other scene every
+/// material. A mesh without texture coordinates gets them from its geometry
+/// ([`planar_uvs`]).
+pub fn apply_texture(scene: &mut Scene, spec: &TextureSpec) -> Result<(), String> {
+    let image = match spec {
+        TextureSpec::Checker => None,
+        TextureSpec::Image(path) => Some(load_texture(path)?),
+    };
+    let mesh = &mut scene.mesh;
+    if mesh.uvs.is_empty() {
+        *mesh = planar_uvs(mesh);
+    }
+    let textured: Vec<bool> = if scene.is_box {
+        // The room is the box's first ten faces, in colours no block uses.
+        let room = super::cornell_box();
+        let colours: Vec<Vec3> = room.faces[..10]
+            .iter()
+            .map(|f| room.material(f).color)
+            .collect();
+        mesh.materials
+            .iter()
+            .map(|m| colours.contains(&m.color))
+            .collect()
+    } else {
+        vec![true; mesh.materials.len()]
+    };
+    let shared = image.map(|t| {
+        mesh.textures.push(t);
+        mesh.textures.len() as u32 - 1
+    });
+    for (material, textured) in mesh.materials.iter_mut().zip(textured) {
+        if !textured {
+            continue;
+        }
+        let index = match shared {
+            Some(i) => i,
+            None => {
+                mesh.textures.push(checker(material.color));
+                mesh.textures.len() as u32 - 1
+            }
+        };
+        *material = Material {
+            texture: Some(index),
+            ..*material
+        };
+    }
+    Ok(())
+}
+
+/// The mesh with texture coordinates from its geometry: each face is projected
+/// on the axis plane its normal is closest to, the mesh's bounding box mapped to
+/// [0, 1] on each axis, with v up (y points down). Faces get vertices of their
+/// own, since a corner shared by faces facing different ways needs a coordinate
+/// for each.
+pub fn planar_uvs(mesh: &Mesh) -> Mesh {
+    let Some(&first) = mesh.positions.first() else {
+        return mesh.clone();
+    };
+    let (low, high) = mesh
+        .positions
+        .iter()
+        .fold((first, first), |(l, h), &p| (l.min(p), h.max(p)));
+    let extent = (high - low).max(Vec3::splat(f32::MIN_POSITIVE));
+    let mut out = Mesh {
+        materials: mesh.materials.clone(),
+        textures: mesh.textures.clone(),
+        ..Mesh::default()
+    };
+    for face in &mesh.faces {
+        let n = face.normal.abs();
+        let first = out.positions.len() as u32;
+        for k in 0..3 {
+            let vertex = mesh.vertex(face, k);
+            let q = (vertex.position - low) / extent;
+            let uv = if n.x >= n.y && n.x >= n.z {
+                Vec2::new(q.z, 1.0 - q.y)
+            } else if n.y >= n.z {
+                Vec2::new(q.x, q.z)
+            } else {
+                Vec2::new(q.x, 1.0 - q.y)
+            };
+            out.positions.push(vertex.position);
+            if !mesh.normals.is_empty() {
+                out.normals.push(vertex.normal);
+            }
+            out.uvs.push(uv);
+        }
+        out.faces.push(crate::pipeline::Face {
+            vertices: [first, first + 1, first + 2],
+            ..*face
+        });
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::parse_scene;
+
+    #[test]
+    fn checker_alternates_its_colour_and_a_darker_one() {
+        let t = checker(Vec3::ONE);
+        let at = |x: f32, y: f32| t.sample(Vec2::new(x, y), crate::pipeline::Filter::Nearest);
+        let step = 1.0 / CHECKER_SQUARES as f32;
+        assert_eq!(at(0.5 * step, 1.0 - 0.5 * step), Vec3::ONE);
+        assert_eq!(at(1.5 * step, 1.0 - 0.5 * step), Vec3::splat(CHECKER_DARK));
+        assert_eq!(at(1.5 * step, 1.0 - 1.5 * step), Vec3::ONE);
+    }
+
+    #[test]
+    fn the_box_gets_textured_walls_and_plain_blocks() {
+        let mut scene = parse_scene("cornell").unwrap();
+        apply_texture(&mut scene, &TextureSpec::Checker).unwrap();
+        let mesh = &scene.mesh;
+        assert_eq!(mesh.uvs.len(), mesh.positions.len());
+        assert_eq!(
+            mesh.textures.len(),
+            5,
+            "floor, two walls, ceiling, back wall"
+        );
+        for (i, face) in mesh.faces.iter().enumerate() {
+            assert_eq!(mesh.material(face).texture.is_some(), i < 10, "face {i}");
+        }
+        // Every coordinate lies in [0, 1]: the box spans its own bounding box.
+        assert!(mesh
+            .uvs
+            .iter()
+            .all(|uv| (0.0..=1.0).contains(&uv.x) && (0.0..=1.0).contains(&uv.y)));
+    }
+
+    #[test]
+    fn a_missing_or_bad_image_is_a_one_line_error_naming_it() {
+        let mut scene = parse_scene("sphere:100").unwrap();
+        let missing = TextureSpec::Image("/nonexistent/wood.png".into());
+        let e = apply_texture(&mut scene, &missing).unwrap_err();
+        assert!(e.starts_with("texture /nonexistent/wood.png: "), "{e}");
+        assert!(!e.contains('\n'));
+        let dir = std::env::temp_dir().join(format!("rasterlab-tex-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let bad = dir.join("bad.png");
+        std::fs::write(&bad, b"not a png").unwrap();
+        let e = load_texture(&bad).unwrap_err();
+        assert!(
+            e.starts_with(&format!("texture {}: ", bad.display())),
+            "{e}"
+        );
+        assert!(!e.contains('\n'));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
