@@ -6,6 +6,7 @@ mod common;
 use rasterlab::app::image_io::read_rgb_png;
 use rasterlab::app::overview::figure_one;
 use rasterlab::app::{self, Settings, OVERVIEW_FILE};
+use rasterlab::pipeline::Filter;
 use rasterlab::{cornell_box, Figure};
 use std::path::Path;
 
@@ -135,6 +136,30 @@ fn committed_pictures_match_the_code() {
     ] {
         let (frame, _) = app::render(Figure::of(stage), &scene.mesh, &settings, None);
         assert_picture(&steps.join(format!("models-{}.png", stage.name())), &frame);
+    }
+    // rasterlab pixel-light --texture checker [--affine | --filter bilinear]
+    let mut textured = rasterlab::scene::parse_scene("cornell").unwrap();
+    rasterlab::scene::texture::apply_texture(
+        &mut textured,
+        &rasterlab::scene::texture::TextureSpec::Checker,
+    )
+    .unwrap();
+    let pixel_light = rasterlab::StageName::PixelLight;
+    for (name, figure, filter) in [
+        ("perspective", Figure::of(pixel_light), Filter::Nearest),
+        (
+            "affine",
+            Figure::with_interpolation(pixel_light, Some(true)),
+            Filter::Nearest,
+        ),
+        ("bilinear", Figure::of(pixel_light), Filter::Bilinear),
+    ] {
+        let settings = Settings {
+            filter,
+            ..Settings::default()
+        };
+        let (frame, _) = app::render(figure, &textured.mesh, &settings, None);
+        assert_picture(&steps.join(format!("texture-{name}.png")), &frame);
     }
     // rasterlab depth --buffer
     let (depth, _) = app::render(

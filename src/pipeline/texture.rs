@@ -42,28 +42,39 @@ impl Texture {
         self.height
     }
 
-    /// The texel at column `x`, row `y` (from the top), both repeating.
+    /// The texel at column `x`, row `y` (from the top), both repeating. They lie
+    /// within one image of it (from -1 to W or H), so one step brings them in,
+    /// without a division.
     #[inline]
     fn texel(&self, x: i64, y: i64) -> Vec3 {
-        let x = x.rem_euclid(self.width as i64) as usize;
-        let y = y.rem_euclid(self.height as i64) as usize;
-        self.texels[y * self.width as usize + x]
+        let wrap = |i: i64, n: u32| {
+            let n = n as i64;
+            (if i < 0 {
+                i + n
+            } else if i >= n {
+                i - n
+            } else {
+                i
+            }) as usize
+        };
+        self.texels[wrap(y, self.height) * self.width as usize + wrap(x, self.width)]
     }
 
     /// The reflectance at texture coordinate `uv`: the point `(u W, (1 - v) H)` of
     /// the image, read with `filter`.
     pub fn sample(&self, uv: Vec2, filter: Filter) -> Vec3 {
         // Only the fraction matters (the texture repeats); taking it first keeps
-        // the image coordinates small and exact.
-        let (u, v) = (uv.x - uv.x.floor(), uv.y - uv.y.floor());
+        // the image coordinates small and exact, from 0 to W and H.
+        let (u, v) = (fraction(uv.x), fraction(uv.y));
         let x = u * self.width as f32;
         let y = (1.0 - v) * self.height as f32;
         match filter {
-            Filter::Nearest => self.texel(x.floor() as i64, y.floor() as i64),
+            // Not negative: truncation is the floor.
+            Filter::Nearest => self.texel(x as i64, y as i64),
             Filter::Bilinear => {
                 // Texel centres sit at half-integers: measure from them.
                 let (x, y) = (x - 0.5, y - 0.5);
-                let (x0, y0) = (x.floor(), y.floor());
+                let (x0, y0) = (floor(x), floor(y));
                 let (fx, fy) = (x - x0, y - y0);
                 let (i, j) = (x0 as i64, y0 as i64);
                 let top = self.texel(i, j).lerp(self.texel(i + 1, j), fx);
@@ -71,6 +82,36 @@ impl Texture {
                 top.lerp(bottom, fy)
             }
         }
+    }
+}
+
+/// `v.floor()` for `v` from -1 to 2^23, without the library call `f32::floor` is
+/// on x86-64 before SSE4.1.
+#[inline]
+fn floor(v: f32) -> f32 {
+    let t = v as i64 as f32;
+    if t > v {
+        t - 1.0
+    } else {
+        t
+    }
+}
+
+/// `v - v.floor()`, in [0, 1), for any `v`; NaN and the infinities give NaN.
+#[inline]
+fn fraction(v: f32) -> f32 {
+    if !v.is_finite() {
+        return f32::NAN;
+    }
+    if v.abs() >= 8_388_608.0 {
+        return 0.0; // whole already, from 2^23 on
+    }
+    let f = v - floor(v);
+    // Just below a whole number, `v + 1` can round up to it: stay below 1.
+    if f >= 1.0 {
+        0.0
+    } else {
+        f
     }
 }
 
@@ -113,6 +154,22 @@ mod tests {
         // midway between the right column's centre and the left one's.
         let edge = t.sample(Vec2::new(0.0, 0.75), Filter::Bilinear);
         assert!((edge - Vec3::splat(0.5)).length() < 1e-6, "{edge}");
+    }
+
+    #[test]
+    fn fraction_is_v_minus_its_floor() {
+        for bits in (0..=u32::MAX).step_by(97) {
+            let v = f32::from_bits(bits);
+            let expected = v - v.floor();
+            let got = fraction(v);
+            if v.is_finite() {
+                let expected = if expected >= 1.0 { 0.0 } else { expected };
+                assert_eq!(got, expected, "{v:e}");
+                assert!((0.0..1.0).contains(&got), "{v:e}");
+            } else {
+                assert!(got.is_nan(), "{v:e}");
+            }
+        }
     }
 
     #[test]

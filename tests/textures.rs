@@ -1,0 +1,218 @@
+//! Textures (#12): the checker on the box, perspective-correct against affine
+//! texture coordinates, the two filters, a model's MTL map_Kd, and bad input.
+
+use rasterlab::app::{self, Settings};
+use rasterlab::pipeline::{Filter, Frame};
+use rasterlab::scene::texture::{apply_texture, TextureSpec};
+use rasterlab::scene::{load_obj, parse_scene};
+use rasterlab::{Figure, StageName};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn checker_box() -> rasterlab::pipeline::Mesh {
+    let mut scene = parse_scene("cornell").unwrap();
+    apply_texture(&mut scene, &TextureSpec::Checker).unwrap();
+    scene.mesh
+}
+
+fn render(figure: Figure, mesh: &rasterlab::pipeline::Mesh, settings: &Settings) -> Frame {
+    app::render(figure, mesh, settings, None).0
+}
+
+fn differing(a: &Frame, b: &Frame, rows: std::ops::Range<usize>) -> usize {
+    let w = a.width as usize;
+    rows.map(|y| {
+        (0..w)
+            .filter(|&x| a.color[y * w + x] != b.color[y * w + x])
+            .count()
+    })
+    .sum()
+}
+
+/// Perspective-correct and affine texture coordinates agree where the surface
+/// keeps one depth (the back wall, facing the camera) and part where it recedes
+/// (floor, ceiling, side walls): the checker's squares warp.
+#[test]
+fn affine_texture_coordinates_warp_only_receding_surfaces() {
+    let (mesh, s) = (checker_box(), Settings::default());
+    let perspective = render(Figure::of(StageName::PixelLight), &mesh, &s);
+    let affine = render(
+        Figure::with_interpolation(StageName::PixelLight, Some(true)),
+        &mesh,
+        &s,
+    );
+    let total = differing(&perspective, &affine, 0..500);
+    // The back wall, rows 130 to 210 between the side walls, above the blocks:
+    // the same texels and light, up to one level of rounding (eq. 10 and 11 see
+    // positions that differ in the last bits), or a texel flipped on a square's
+    // boundary (76 of 18 400 pixels, measured).
+    let channel_gap = |a: u32, b: u32| {
+        (0..3)
+            .map(|k| ((a >> (8 * k)) & 255).abs_diff((b >> (8 * k)) & 255))
+            .max()
+            .unwrap()
+    };
+    let close = |a: u32, b: u32| channel_gap(a, b) <= 1;
+    let flips: Vec<(usize, usize)> = (130..210)
+        .flat_map(|y| (135..365).map(move |x| (x, y)))
+        .filter(|&(x, y)| !close(perspective.color[y * 500 + x], affine.color[y * 500 + x]))
+        .collect();
+    // The wall spans a whole number of pixels per square, so the squares'
+    // boundaries fall on pixels, where rounding decides the side: each flip has,
+    // next to it in the perspective image, the affine image's colour.
+    for &(x, y) in &flips {
+        let wanted = affine.color[y * 500 + x];
+        let beside = [(x - 1, y), (x + 1, y), (x, y - 1), (x, y + 1)]
+            .iter()
+            .any(|&(u, v)| close(perspective.color[v * 500 + u], wanted));
+        assert!(beside, "({x}, {y}) differs away from a square's boundary");
+    }
+    assert!(total > 40_000, "{total} pixels differ in all");
+    assert!(
+        flips.len() < 200,
+        "{} back-wall pixels flipped",
+        flips.len()
+    );
+}
+
+/// Without --texture nothing changes: the lit stages on the plain box are the
+/// committed figures (tests/figures.rs), and the box has no texture coordinates
+/// to carry. With it, the blocks keep their colours exactly.
+#[test]
+fn the_checker_leaves_the_blocks_as_they_were() {
+    let s = Settings::default();
+    let plain = render(
+        Figure::of(StageName::PixelLight),
+        &rasterlab::cornell_box(),
+        &s,
+    );
+    let textured = render(Figure::of(StageName::PixelLight), &checker_box(), &s);
+    // The short (red) block's front face, around pixel (300, 400).
+    let i = 400 * 500 + 300;
+    assert_eq!(plain.color[i], textured.color[i]);
+    assert_ne!(plain.color, textured.color);
+}
+
+/// Nearest sampling gives each pixel one of the checker's two shades (times the
+/// light); bilinear sampling blends them, so it has more distinct colours.
+#[test]
+fn bilinear_blends_what_nearest_keeps_apart() {
+    let mesh = checker_box();
+    let distinct = |filter: Filter| {
+        let s = Settings {
+            filter,
+            indirect: 1.0,
+            light_power: 0.0,
+            ..Settings::default()
+        };
+        // Only indirect light: each pixel is ρ itself times 1.
+        let frame = render(Figure::of(StageName::PixelLight), &mesh, &s);
+        let back_wall: std::collections::BTreeSet<u32> = (130..210)
+            .flat_map(|y| (135..365).map(move |x| y * 500 + x))
+            .map(|i| frame.color[i])
+            .collect();
+        back_wall.len()
+    };
+    assert_eq!(distinct(Filter::Nearest), 2, "white and its quarter");
+    assert!(distinct(Filter::Bilinear) > 20);
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("rasterlab-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// A square facing the camera, textured by map_Kd with a 2 x 2 image: red and
+/// green on top, blue and white below.
+fn write_textured_square(dir: &Path, texture: Option<&str>) -> PathBuf {
+    let obj = "mtllib square.mtl\nusemtl tiles\n\
+        v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\n\
+        vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n\
+        f 1/1 2/2 3/3 4/4\n";
+    std::fs::write(dir.join("square.obj"), obj).unwrap();
+    let mtl = format!(
+        "newmtl tiles\nKd 0.5 0.5 0.5\n{}",
+        texture.map_or(String::new(), |t| format!("map_Kd {t}\n"))
+    );
+    std::fs::write(dir.join("square.mtl"), mtl).unwrap();
+    let image = image::RgbImage::from_fn(2, 2, |x, y| {
+        image::Rgb(match (x, y) {
+            (0, 0) => [255, 0, 0],
+            (1, 0) => [0, 255, 0],
+            (0, 1) => [0, 0, 255],
+            _ => [255, 255, 255],
+        })
+    });
+    image.save(dir.join("tiles.png")).unwrap();
+    dir.join("square.obj")
+}
+
+#[test]
+fn a_models_map_kd_is_its_texture() {
+    let dir = temp_dir("map-kd");
+    let mesh = load_obj(&write_textured_square(&dir, Some("tiles.png"))).unwrap();
+    assert_eq!(mesh.textures.len(), 1);
+    let s = Settings {
+        indirect: 1.0,
+        light_power: 0.0,
+        ..Settings::default()
+    };
+    let frame = render(Figure::of(StageName::PixelLight), &mesh, &s);
+    // The square spans pixels 83 to 416 (f / 3 = 166.7 about the centre).
+    let at = |x: usize, y: usize| frame.color[y * 500 + x];
+    let rgb = |c: u32| [(c >> 16) & 255, (c >> 8) & 255, c & 255];
+    assert_eq!(rgb(at(150, 150)), [255, 0, 0], "top left: red");
+    assert_eq!(rgb(at(350, 150)), [0, 255, 0], "top right: green");
+    assert_eq!(rgb(at(150, 350)), [0, 0, 255], "bottom left: blue");
+    assert_eq!(rgb(at(350, 350)), [255, 255, 255], "bottom right: white");
+    // Without map_Kd, the same square is Kd's grey.
+    std::fs::remove_file(dir.join("square.obj")).unwrap();
+    let plain = load_obj(&write_textured_square(&dir, None)).unwrap();
+    let frame = render(Figure::of(StageName::PixelLight), &plain, &s);
+    assert_eq!(rgb(frame.color[150 * 500 + 150]), [128, 128, 128]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_map_kd_pointing_nowhere_is_a_one_line_error_naming_the_file() {
+    let dir = temp_dir("map-kd-missing");
+    let obj = write_textured_square(&dir, Some("missing.png"));
+    let e = load_obj(&obj).unwrap_err();
+    assert!(e.contains("square.obj"), "{e}");
+    assert!(e.contains("map_Kd"), "{e}");
+    assert!(e.contains("missing.png"), "{e}");
+    assert!(!e.contains('\n'));
+    // From the command line: a failure (exit code 1) and no image written.
+    let out = dir.join("out.png");
+    let o = Command::new(env!("CARGO_BIN_EXE_rasterlab"))
+        .args(["pixel-light", "--scene"])
+        .arg(&obj)
+        .arg("-o")
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(String::from_utf8_lossy(&o.stderr).lines().count(), 1);
+    assert!(!out.exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn texture_options_are_refused_where_nothing_reads_them() {
+    let o = Command::new(env!("CARGO_BIN_EXE_rasterlab"))
+        .args(["depth", "--texture", "checker", "-o", "-"])
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(e.contains("--texture does nothing for depth"), "{e}");
+    let o = Command::new(env!("CARGO_BIN_EXE_rasterlab"))
+        .args(["pixel-light", "--texture", "/no/such/image.png", "-o", "-"])
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(1));
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(e.starts_with("error: texture /no/such/image.png: "), "{e}");
+    assert_eq!(e.lines().count(), 1);
+}
