@@ -719,7 +719,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 },
                 shadows: a.shadows,
                 samples: a.samples,
-                near: None,
+                ..raytrace::Options::default()
             };
             let out = a
                 .render
@@ -727,6 +727,10 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 .clone()
                 .unwrap_or_else(|| PathBuf::from("raytrace.png"));
             let (scene, settings) = a.render.scene.resolve()?;
+            let options = raytrace::Options {
+                filter: settings.filter,
+                ..options
+            };
             let timing = app::raytrace_to_file(
                 &scene.mesh,
                 &settings,
@@ -767,6 +771,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 settings,
                 mesh: scene.mesh,
                 scene: a.scene.scene.clone(),
+                texture: a.scene.texture.clone(),
                 view: a.draw.figure(a.stage),
                 frames: a.frames,
                 screenshot: a.screenshot.clone(),
@@ -880,14 +885,15 @@ fn refuse_unused_options(command: &str, m: &ArgMatches) -> Result<(), String> {
             _ => {}
         }
     }
-    if (given("texture") || given("filter")) && !(lit || command == "view") {
+    let traced_lit = command == "raytrace" && !m.get_flag("flat");
+    if (given("texture") || given("filter")) && !(lit || traced_lit || command == "view") {
         let id = if given("texture") {
             "texture"
         } else {
             "filter"
         };
         return Err(format!(
-            "--{id} does nothing for {what}: only vertex-light and pixel-light (and the viewer) read textures"
+            "--{id} does nothing for {what}: only vertex-light, pixel-light, raytrace without --flat and the viewer read textures"
         ));
     }
     if command == "raytrace" {

@@ -156,3 +156,22 @@ fn walking_through_the_back_wall() {
     let args = view(&dir, &keys);
     assert_renderer_agrees(&dir, &args, &shot);
 }
+
+#[test]
+#[ignore = "needs Xvfb; .ci/run runs it with --ignored"]
+fn t_and_b_toggle_the_checker_and_bilinear_filtering() {
+    let dir = temp_dir("viewer-texture");
+    let shot = dir.join("shot.png");
+    let keys = script("t,b", "4", &shot);
+    let args = view(&dir, &keys);
+    let joined = args.join(" ");
+    assert!(joined.contains("--texture checker"), "{joined}");
+    assert!(joined.contains("--filter bilinear"), "{joined}");
+    assert_renderer_agrees(&dir, &args, &shot);
+    // t again: the plain box, as the renderer draws it without --texture.
+    let shot = dir.join("plain.png");
+    let keys = script("t,none,t", "4", &shot);
+    let args = view(&dir, &keys);
+    assert!(!args.join(" ").contains("--texture"), "{args:?}");
+    assert_renderer_agrees(&dir, &args, &shot);
+}

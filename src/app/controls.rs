@@ -49,6 +49,10 @@ pub enum Action {
     TogglePerspective,
     /// Switch between the handout's rows rasterizer and the exact one (x).
     ToggleRaster,
+    /// Textures on or off (t): `--texture`'s, a model's own, or the checker.
+    ToggleTexture,
+    /// Nearest or bilinear texture filtering (b).
+    ToggleFilter,
     /// Save the current frame as a PNG (c).
     Save,
     /// Print the key list (h).
@@ -65,6 +69,7 @@ keys: up/down move the camera forward/back, left/right turn it (yaw),
       1 points, 2 wireframe, 3 filled, 4 depth, 5 vertex-light, 6 pixel-light,
       7 pixel-light --affine; p toggles perspective-correct interpolation;
       x switches between the rows rasterizer and the exact edge rasterizer;
+      t toggles textures (the checker, or the model's own), b bilinear filtering;
       c saves the frame as a PNG; h prints this list; Esc quits.";
 
 /// Speeds of held keys and of the mouse. Movement is per second, so it feels the
@@ -183,6 +188,8 @@ pub fn action(key: Key) -> Option<Action> {
         Key::Char(c @ '1'..='7') => Some(Action::Show(Figure::FIGURES[c as usize - '1' as usize])),
         Key::Char('p') => Some(Action::TogglePerspective),
         Key::Char('x') => Some(Action::ToggleRaster),
+        Key::Char('t') => Some(Action::ToggleTexture),
+        Key::Char('b') => Some(Action::ToggleFilter),
         Key::Char('c') => Some(Action::Save),
         Key::Char('h') => Some(Action::Help),
         Key::Escape => Some(Action::Quit),

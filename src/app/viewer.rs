@@ -8,7 +8,8 @@ use super::image_io::write_png;
 use super::parallel::Parallel;
 use super::Settings;
 use crate::measure::figure::{Figure, Raster, StageName};
-use crate::pipeline::Frame;
+use crate::pipeline::{Filter, Frame, Mesh};
+use crate::scene::texture::{apply_texture, TextureSpec};
 use std::collections::VecDeque;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -20,6 +21,8 @@ pub struct Options {
     /// What the window shows, and the `--scene` spec that named it.
     pub mesh: crate::pipeline::Mesh,
     pub scene: String,
+    /// The `--texture` spec the mesh was given, if any.
+    pub texture: Option<String>,
     pub view: Figure,
     /// Quit after this many frames.
     pub frames: Option<u64>,
@@ -47,17 +50,47 @@ pub struct Summary {
     pub settings: Settings,
     pub view: Figure,
     pub scene: String,
+    /// The `--texture` spec that draws the last frame's textures, if it had any
+    /// that the scene alone does not give.
+    pub texture: Option<String>,
 }
 
 impl Summary {
     /// The render command that draws the last frame again.
     pub fn reproduce(&self) -> String {
-        let command = command_for(self.view, &self.settings);
-        match self.scene.as_str() {
-            "cornell" => command,
-            scene => format!("{command} --scene {scene}"),
+        let mut command = command_for(self.view, &self.settings);
+        if self.scene != "cornell" {
+            command += &format!(" --scene {}", self.scene);
         }
+        let lit = matches!(
+            self.view.stage,
+            StageName::VertexLight | StageName::PixelLight
+        );
+        if let (Some(texture), true) = (&self.texture, lit) {
+            command += &format!(" --texture {texture}");
+        }
+        if self.settings.filter == crate::pipeline::Filter::Bilinear && lit {
+            command += " --filter bilinear";
+        }
+        command
     }
+}
+
+/// `mesh` with its textures toggled: without them if it has any, else with the
+/// checker (on the room's walls for the box, named by `spec`).
+fn toggle_texture(mesh: &Mesh, spec: &str) -> Result<Mesh, String> {
+    if mesh.materials.iter().any(|m| m.texture.is_some()) {
+        let mut plain = mesh.clone();
+        plain.materials.iter_mut().for_each(|m| m.texture = None);
+        return Ok(plain);
+    }
+    let mut scene = crate::scene::Scene {
+        name: spec.to_string(),
+        mesh: mesh.clone(),
+        is_box: spec == "cornell" || spec.starts_with("cornell:"),
+    };
+    apply_texture(&mut scene, &TextureSpec::Checker)?;
+    Ok(scene.mesh)
 }
 
 /// `rasterlab <stage> [--affine] --size .. --camera ..`: every setting, written so
@@ -197,7 +230,14 @@ pub fn run(options: Options) -> Result<Summary, String> {
         })?;
     window.set_target_fps(options.fps);
 
-    let scene = options.mesh.clone();
+    // The mesh as given, and the same with textures toggled (`t`): without them,
+    // or with the checker if it had none.
+    let given = options.mesh.clone();
+    let had_texture = given.materials.iter().any(|m| m.texture.is_some());
+    // Made at the first `t`: a large mesh is copied only if asked.
+    let mut toggled: Option<Mesh> = None;
+    let mut textured = had_texture;
+    let mut scene = given.clone();
     let controls = Controls::default();
     let mut settings = options.settings;
     let mut view = options.view;
@@ -252,6 +292,26 @@ pub fn run(options: Options) -> Result<Summary, String> {
                     view = controls::toggle_raster(view);
                     pipeline = Parallel::new(view, &scene, threads)?;
                 }
+                Some(Action::ToggleTexture) => {
+                    textured = !textured;
+                    scene = if textured == had_texture {
+                        given.clone()
+                    } else {
+                        match &toggled {
+                            Some(mesh) => mesh.clone(),
+                            None => toggled
+                                .insert(toggle_texture(&given, &options.scene)?)
+                                .clone(),
+                        }
+                    };
+                    pipeline = Parallel::new(view, &scene, threads)?;
+                }
+                Some(Action::ToggleFilter) => {
+                    settings.filter = match settings.filter {
+                        Filter::Nearest => Filter::Bilinear,
+                        Filter::Bilinear => Filter::Nearest,
+                    };
+                }
                 Some(Action::Save) => save(&frame, &free_capture_path(view))?,
                 Some(Action::Help) => eprintln!("{}", controls::HELP),
                 Some(Action::Quit) => quit = true,
@@ -298,6 +358,13 @@ pub fn run(options: Options) -> Result<Summary, String> {
         settings,
         view,
         scene: options.scene,
+        // A texture the scene does not give by itself: --texture's, or the
+        // checker toggled on.
+        texture: match (textured, had_texture) {
+            (true, true) => options.texture,
+            (true, false) => Some("checker".into()),
+            (false, _) => None,
+        },
     })
 }
 

@@ -5,8 +5,8 @@
 
 use crate::measure::bvh::Bvh;
 use crate::pipeline::target::pack;
-use crate::pipeline::{Camera, Frame, Light, Mesh};
-use glam::Vec3;
+use crate::pipeline::{Camera, Filter, Frame, Light, Mesh, Texture};
+use glam::{Vec2, Vec3};
 
 /// What the reference shows at a hit.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -27,6 +27,8 @@ pub struct Options {
     /// Ignore primary hits nearer than this camera-space depth, like the
     /// rasterizer's near plane.
     pub near: Option<f32>,
+    /// How textures are read between texels, as `--filter` tells the rasterizer.
+    pub filter: Filter,
 }
 
 impl Default for Options {
@@ -36,6 +38,7 @@ impl Default for Options {
             shadows: false,
             samples: 1,
             near: None,
+            filter: Filter::Nearest,
         }
     }
 }
@@ -53,6 +56,10 @@ pub struct Scene {
     pub bvh: Bvh,
     /// Per face, its three vertex normals; empty for a mesh without them.
     normals: Vec<[Vec3; 3]>,
+    /// Per face, its texture and three texture coordinates; empty for a mesh
+    /// without textured materials or without texture coordinates.
+    textured: Vec<Option<(u32, [Vec2; 3])>>,
+    textures: Vec<Texture>,
 }
 
 impl Scene {
@@ -65,29 +72,63 @@ impl Scene {
                 .map(|f| f.vertices.map(|i| mesh.normals[i as usize]))
                 .collect()
         };
+        let textured = if mesh.uvs.is_empty() || mesh.textures.is_empty() {
+            Vec::new()
+        } else {
+            mesh.faces
+                .iter()
+                .map(|f| {
+                    let uvs = f.vertices.map(|i| mesh.uvs[i as usize]);
+                    mesh.material(f).texture.map(|t| (t, uvs))
+                })
+                .collect()
+        };
         Scene {
             bvh: Bvh::new(mesh.triangles().collect()),
             normals,
+            textured,
+            textures: mesh.textures.clone(),
         }
+    }
+
+    /// The barycentric weights of `hit` in triangle `i`'s second and third
+    /// corners; `None` for a degenerate triangle.
+    fn barycentric(&self, i: usize, hit: Vec3) -> Option<(f32, f32)> {
+        let tri = &self.bvh.triangles[i];
+        let (e1, e2, p) = (tri.v1 - tri.v0, tri.v2 - tri.v0, hit - tri.v0);
+        let (d11, d12, d22) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
+        let (dp1, dp2) = (p.dot(e1), p.dot(e2));
+        let det = d11 * d22 - d12 * d12;
+        if det == 0.0 {
+            return None;
+        }
+        Some(((d22 * dp1 - d12 * dp2) / det, (d11 * dp2 - d12 * dp1) / det))
     }
 
     /// The surface normal of triangle `i` at `hit`: the face's, or its vertex
     /// normals weighted by the hit's barycentric coordinates, renormalised.
     fn normal(&self, i: usize, hit: Vec3) -> Vec3 {
         let tri = &self.bvh.triangles[i];
-        let Some(n) = self.normals.get(i) else {
+        let (Some(n), Some((u, v))) = (self.normals.get(i), self.barycentric(i, hit)) else {
             return tri.normal;
         };
-        let (e1, e2, p) = (tri.v1 - tri.v0, tri.v2 - tri.v0, hit - tri.v0);
-        let (d11, d12, d22) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
-        let (dp1, dp2) = (p.dot(e1), p.dot(e2));
-        let det = d11 * d22 - d12 * d12;
-        if det == 0.0 {
-            return tri.normal;
-        }
-        let u = (d22 * dp1 - d12 * dp2) / det;
-        let v = (d11 * dp2 - d12 * dp1) / det;
         (n[0] * (1.0 - u - v) + n[1] * u + n[2] * v).normalize_or_zero()
+    }
+
+    /// The reflectance ρ of triangle `i` at `hit`: its texture at the texture
+    /// coordinate the hit's barycentric weights give, or its colour.
+    fn reflectance(&self, i: usize, hit: Vec3, filter: Filter) -> Vec3 {
+        let tri = &self.bvh.triangles[i];
+        let Some(&Some((texture, uv))) = self.textured.get(i) else {
+            return tri.color;
+        };
+        let (Some(texture), Some((u, v))) = (
+            self.textures.get(texture as usize),
+            self.barycentric(i, hit),
+        ) else {
+            return tri.color;
+        };
+        texture.sample(uv[0] * (1.0 - u - v) + uv[1] * u + uv[2] * v, filter)
     }
 }
 
@@ -113,10 +154,11 @@ pub fn trace(
                     .bvh
                     .nearest(hit, to_light, 1e-4)
                     .is_some_and(|(s, _)| s < 1.0);
+            let rho = scene.reflectance(i, hit, options.filter);
             if blocked {
-                tri.color * light.indirect
+                rho * light.indirect
             } else {
-                light.reflected(hit, scene.normal(i, hit), tri.color)
+                light.reflected(hit, scene.normal(i, hit), rho)
             }
         }
     };
