@@ -149,6 +149,12 @@ struct SceneArgs {
     /// How textures are read between texels.
     #[arg(long, value_enum, default_value = "nearest")]
     filter: FilterArg,
+    /// Depth, vertex-light and pixel-light: depth of field, a blur that follows
+    /// each pixel's circle of confusion, focused at depth FOCUS with a lens of
+    /// radius APERTURE (world units).
+    #[arg(long, value_name = "FOCUS,APERTURE", value_parser = parse::dof,
+          allow_hyphen_values = true)]
+    dof: Option<rasterlab::pipeline::dof::DepthOfField>,
 }
 
 /// How textures are read between texels.
@@ -185,6 +191,7 @@ impl SceneArgs {
                 FilterArg::Nearest => Filter::Nearest,
                 FilterArg::Bilinear => Filter::Bilinear,
             },
+            dof: self.dof,
             ..Settings::default()
         };
         let forward = settings.camera().axes()[2];
@@ -884,6 +891,11 @@ fn refuse_unused_options(command: &str, m: &ArgMatches) -> Result<(), String> {
             }
             _ => {}
         }
+    }
+    if given("dof") && !(matches!(stage, Some(s) if s >= StageName::Depth) || command == "view") {
+        return Err(format!(
+            "--dof does nothing for {what}: only depth, vertex-light, pixel-light and the viewer have the depth buffer it needs"
+        ));
     }
     let traced_lit = command == "raytrace" && !m.get_flag("flat");
     if (given("texture") || given("filter")) && !(lit || traced_lit || command == "view") {

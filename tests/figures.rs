@@ -161,6 +161,18 @@ fn committed_pictures_match_the_code() {
         let (frame, _) = app::render(figure, &textured.mesh, &settings, None);
         assert_picture(&steps.join(format!("texture-{name}.png")), &frame);
     }
+    // rasterlab pixel-light --texture checker --dof 4.001,0.05 (and 2.2,0.05)
+    for (name, focus) in [("back-wall", 4.001), ("near", 2.2)] {
+        let settings = Settings {
+            dof: Some(rasterlab::pipeline::dof::DepthOfField {
+                focus,
+                aperture: 0.05,
+            }),
+            ..Settings::default()
+        };
+        let (frame, _) = app::render(Figure::of(pixel_light), &textured.mesh, &settings, None);
+        assert_picture(&steps.join(format!("dof-{name}.png")), &frame);
+    }
     // rasterlab depth --buffer
     let (depth, _) = app::render(
         Figure::of(rasterlab::StageName::Depth),

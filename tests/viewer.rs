@@ -175,3 +175,18 @@ fn t_and_b_toggle_the_checker_and_bilinear_filtering() {
     assert!(!args.join(" ").contains("--texture"), "{args:?}");
     assert_renderer_agrees(&dir, &args, &shot);
 }
+
+#[test]
+#[ignore = "needs Xvfb; .ci/run runs it with --ignored"]
+fn g_focuses_depth_of_field_on_the_centre() {
+    let dir = temp_dir("viewer-dof");
+    let shot = dir.join("shot.png");
+    // One frame first: g focuses on what the last frame drew.
+    let keys = script("none,g", "3", &shot);
+    let args = view(&dir, &keys);
+    let joined = args.join(" ");
+    // The centre pixel shows the tall block's front face, 3.054 from the camera;
+    // the lens is a fiftieth of that.
+    assert!(joined.contains("--dof 3.054"), "{joined}");
+    assert_renderer_agrees(&dir, &args, &shot);
+}

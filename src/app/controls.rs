@@ -53,6 +53,8 @@ pub enum Action {
     ToggleTexture,
     /// Nearest or bilinear texture filtering (b).
     ToggleFilter,
+    /// Depth of field on or off (g).
+    ToggleDepthOfField,
     /// Save the current frame as a PNG (c).
     Save,
     /// Print the key list (h).
@@ -69,7 +71,8 @@ keys: up/down move the camera forward/back, left/right turn it (yaw),
       1 points, 2 wireframe, 3 filled, 4 depth, 5 vertex-light, 6 pixel-light,
       7 pixel-light --affine; p toggles perspective-correct interpolation;
       x switches between the rows rasterizer and the exact edge rasterizer;
-      t toggles textures (the checker, or the model's own), b bilinear filtering;
+      t toggles textures (the checker, or the model's own), b bilinear filtering,
+      g depth of field (--dof's, or focused on what the centre pixel shows);
       c saves the frame as a PNG; h prints this list; Esc quits.";
 
 /// Speeds of held keys and of the mouse. Movement is per second, so it feels the
@@ -190,6 +193,7 @@ pub fn action(key: Key) -> Option<Action> {
         Key::Char('x') => Some(Action::ToggleRaster),
         Key::Char('t') => Some(Action::ToggleTexture),
         Key::Char('b') => Some(Action::ToggleFilter),
+        Key::Char('g') => Some(Action::ToggleDepthOfField),
         Key::Char('c') => Some(Action::Save),
         Key::Char('h') => Some(Action::Help),
         Key::Escape => Some(Action::Quit),

@@ -16,6 +16,7 @@ use crate::measure::plot::Canvas;
 use crate::measure::timing::{time_runs, Timing};
 use crate::measure::{raytrace, report, stress};
 use crate::pipeline::camera::DEFAULT_NEAR;
+use crate::pipeline::dof::DepthOfField;
 use crate::pipeline::draw::Stats;
 use crate::pipeline::interpolate::Pixel;
 use crate::pipeline::raster::rows::{compute_polygon_rows, Rows};
@@ -53,6 +54,8 @@ pub struct Settings {
     pub threads: usize,
     /// How textures are read between texels (`--filter`).
     pub filter: Filter,
+    /// Depth of field applied to each frame (`--dof`).
+    pub dof: Option<DepthOfField>,
 }
 
 impl Default for Settings {
@@ -73,6 +76,7 @@ impl Default for Settings {
             clip: true,
             threads: 1,
             filter: Filter::Nearest,
+            dof: None,
         }
     }
 }
@@ -140,10 +144,21 @@ pub fn render_with_stats(
         .or_else(|_| parallel::Parallel::new(figure, mesh, 1))
         .expect("one band needs no thread");
     let mut frame = Frame::default();
+    // Depth of field, when asked for, belongs to the frame and to its time.
+    let post = |frame: &mut Frame| {
+        if let Some(dof) = settings.dof {
+            *frame = dof.apply(frame, settings.focal);
+        }
+    };
     pipeline.render(mesh, &camera, &uniforms, &mut frame);
+    post(&mut frame);
     let stats = pipeline.stats();
-    let timing =
-        runs.map(|n| time_runs(n, || pipeline.render(mesh, &camera, &uniforms, &mut frame)));
+    let timing = runs.map(|n| {
+        time_runs(n, || {
+            pipeline.render(mesh, &camera, &uniforms, &mut frame);
+            post(&mut frame);
+        })
+    });
     (frame, timing, stats)
 }
 

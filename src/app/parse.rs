@@ -49,6 +49,21 @@ pub fn vec3(s: &str) -> Result<Vec3, String> {
     Ok(Vec3::new(v[0], v[1], v[2]))
 }
 
+/// `FOCUS,APERTURE`: the depth in focus (> 0) and the lens radius (>= 0), in
+/// world units, for `--dof`.
+pub fn dof(s: &str) -> Result<crate::pipeline::dof::DepthOfField, String> {
+    let v = numbers(s, 2, "FOCUS,APERTURE such as 3,0.05")?;
+    if v[0] <= 0.0 || v[1] < 0.0 {
+        return Err(format!(
+            "the focus depth must be greater than 0 and the aperture at least 0, got '{s}'"
+        ));
+    }
+    Ok(crate::pipeline::dof::DepthOfField {
+        focus: v[0],
+        aperture: v[1],
+    })
+}
+
 /// A finite number.
 pub fn finite(s: &str) -> Result<f32, String> {
     Ok(numbers(s, 1, "a number")?[0])

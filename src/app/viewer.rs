@@ -8,6 +8,7 @@ use super::image_io::write_png;
 use super::parallel::Parallel;
 use super::Settings;
 use crate::measure::figure::{Figure, Raster, StageName};
+use crate::pipeline::dof::DepthOfField;
 use crate::pipeline::{Filter, Frame, Mesh};
 use crate::scene::texture::{apply_texture, TextureSpec};
 use std::collections::VecDeque;
@@ -76,6 +77,23 @@ impl Summary {
     }
 }
 
+/// Depth of field focused on what the image's centre pixel shows (the box's back
+/// wall if it shows nothing or has no depth), with a lens a fiftieth of that
+/// depth wide: enough to blur the near walls of the box.
+fn autofocus(frame: &Frame) -> DepthOfField {
+    let centre = (frame.height / 2 * frame.width + frame.width / 2) as usize;
+    let zinv = frame.depth.get(centre).copied().unwrap_or(0.0);
+    let focus = if zinv > 0.0 && (1.0 / zinv).is_finite() {
+        1.0 / zinv
+    } else {
+        4.0
+    };
+    DepthOfField {
+        focus,
+        aperture: focus / 50.0,
+    }
+}
+
 /// `mesh` with its textures toggled: without them if it has any, else with the
 /// checker (on the room's walls for the box, named by `spec`).
 fn toggle_texture(mesh: &Mesh, spec: &str) -> Result<Mesh, String> {
@@ -116,6 +134,9 @@ pub fn command_for(view: Figure, s: &Settings) -> String {
             s.light_power,
             s.indirect
         );
+    }
+    if let (Some(dof), true) = (s.dof, view.stage >= StageName::Depth) {
+        command += &format!(" --dof {},{}", dof.focus, dof.aperture);
     }
     if !s.clip {
         command += " --no-clip";
@@ -237,6 +258,8 @@ pub fn run(options: Options) -> Result<Summary, String> {
     // Made at the first `t`: a large mesh is copied only if asked.
     let mut toggled: Option<Mesh> = None;
     let mut textured = had_texture;
+    // `g` switches between none and this: --dof's, or set at the first `g`.
+    let mut dof = options.settings.dof;
     let mut scene = given.clone();
     let controls = Controls::default();
     let mut settings = options.settings;
@@ -306,6 +329,14 @@ pub fn run(options: Options) -> Result<Summary, String> {
                     };
                     pipeline = Parallel::new(view, &scene, threads)?;
                 }
+                Some(Action::ToggleDepthOfField) => {
+                    if settings.dof.is_some() {
+                        settings.dof = None;
+                    } else {
+                        let chosen = *dof.get_or_insert_with(|| autofocus(&frame));
+                        settings.dof = Some(chosen);
+                    }
+                }
                 Some(Action::ToggleFilter) => {
                     settings.filter = match settings.filter {
                         Filter::Nearest => Filter::Bilinear,
@@ -338,6 +369,9 @@ pub fn run(options: Options) -> Result<Summary, String> {
             &settings.uniforms_for(&scene),
             &mut frame,
         );
+        if let Some(d) = settings.dof {
+            frame = d.apply(&frame, settings.focal);
+        }
         let draw = draw_start.elapsed();
         all_draws.push(draw);
         window

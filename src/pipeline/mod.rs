@@ -16,6 +16,7 @@
 //! - [`interpolate`](mod@interpolate): `Interpolate` for any per-pixel struct, and
 //!   perspective-correct or affine interpolation.
 //! - [`texture`]: images that a material's reflectance is read from.
+//! - [`dof`]: depth of field, a post-process on the colour and depth buffers.
 //! - [`target`]: colour and depth buffers over a band of rows, and 8-bit packing.
 //! - [`draw`]: the handout's `Draw` and `DrawPolygon`, which joins them.
 //!
@@ -23,6 +24,7 @@
 
 pub mod camera;
 pub mod clip;
+pub mod dof;
 pub mod draw;
 pub mod interpolate;
 pub mod light;

@@ -38,7 +38,7 @@ impl Target<'_> {
 }
 
 /// A whole image with its own buffers.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct Frame {
     pub width: u32,
     pub height: u32,
