@@ -8,6 +8,7 @@ use rasterlab::measure::figure::Raster;
 use rasterlab::measure::raytrace;
 use rasterlab::pipeline::draw::Cull;
 use rasterlab::pipeline::raster::Lines;
+use rasterlab::pipeline::shadow::Shadows;
 use rasterlab::pipeline::Filter;
 use rasterlab::scene::texture::{apply_texture, TextureSpec};
 use rasterlab::scene::{framed_pose, parse_scene, write_obj, Scene};
@@ -310,6 +311,15 @@ struct DrawArgs {
     /// edges that ComputePolygonRows follows.
     #[arg(long, value_name = "WALK", value_enum, default_value = "interpolate")]
     lines: LinesArg,
+    /// Shadows: in vertex-light and pixel-light from a shadow map (six 512 x 512
+    /// depth images drawn from the light), in raytrace by a shadow ray from every
+    /// hit.
+    #[arg(long)]
+    shadows: bool,
+    /// With --shadows: percentage-closer filtering, the share of the 3 x 3 texels
+    /// around each point that see the light, for soft edges.
+    #[arg(long, requires = "shadows")]
+    pcf: bool,
 }
 
 impl DrawArgs {
@@ -336,10 +346,16 @@ impl DrawArgs {
             LinesArg::Interpolate => Lines::Interpolate,
             LinesArg::Bresenham => Lines::Bresenham,
         };
+        let shadows = match (self.shadows, self.pcf) {
+            (false, _) => Shadows::None,
+            (true, false) => Shadows::Hard,
+            (true, true) => Shadows::Pcf,
+        };
         Figure::with_interpolation(stage, self.affine())
             .with_raster(raster)
             .with_cull(cull)
             .with_lines(lines)
+            .with_shadows(shadows)
     }
 }
 
@@ -354,9 +370,6 @@ struct AllArgs {
 
 #[derive(Args, Debug)]
 struct RaytraceArgs {
-    /// Cast a shadow ray to the light from every hit.
-    #[arg(long)]
-    shadows: bool,
     /// N x N rays per pixel, spread over the pixel (anti-aliasing).
     #[arg(long, value_name = "N", default_value = "1",
           value_parser = clap::value_parser!(u32).range(1..=16))]
@@ -724,7 +737,8 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 } else {
                     raytrace::Shading::Lit
                 },
-                shadows: a.shadows,
+                // --shadows: a shadow ray to the light from every hit.
+                shadows: a.render.draw.shadows,
                 samples: a.samples,
                 ..raytrace::Options::default()
             };
@@ -892,6 +906,11 @@ fn refuse_unused_options(command: &str, m: &ArgMatches) -> Result<(), String> {
             _ => {}
         }
     }
+    if given("shadows") && !(lit || command == "raytrace" || command == "view") {
+        return Err(format!(
+            "--shadows does nothing for {what}: only vertex-light and pixel-light are lit"
+        ));
+    }
     if given("dof") && !(matches!(stage, Some(s) if s >= StageName::Depth) || command == "view") {
         return Err(format!(
             "--dof does nothing for {what}: only depth, vertex-light, pixel-light and the viewer have the depth buffer it needs"
@@ -909,6 +928,12 @@ fn refuse_unused_options(command: &str, m: &ArgMatches) -> Result<(), String> {
         ));
     }
     if command == "raytrace" {
+        if given("pcf") {
+            return Err(
+                "--pcf does nothing for raytrace: a shadow ray is exact, there is no map to filter"
+                    .into(),
+            );
+        }
         for id in ["raster", "cull", "stats", "buffer", "threads", "lines"] {
             if given(id) {
                 return Err(format!(

@@ -21,6 +21,7 @@ use crate::pipeline::draw::Stats;
 use crate::pipeline::interpolate::Pixel;
 use crate::pipeline::raster::rows::{compute_polygon_rows, Rows};
 use crate::pipeline::raster::Bounds;
+use crate::pipeline::shadow::{ShadowMap, Shadows, SHADOW_MAP_SIZE};
 use crate::pipeline::{Camera, Filter, Frame, Light, Mesh, Uniforms};
 use crate::scene::Scene;
 use glam::Vec3;
@@ -138,7 +139,10 @@ pub fn render_with_stats(
     settings: &Settings,
     runs: Option<usize>,
 ) -> (Frame, Option<Timing>, Stats) {
-    let (camera, uniforms) = (settings.camera(), settings.uniforms_for(mesh));
+    let camera = settings.camera();
+    // The shadow map is part of what a frame with shadows costs: drawn again for
+    // each timed frame, as the viewer does when the light moves.
+    let mut shadow = shadow_map(figure, mesh, settings);
     // No threads to be had: one band, on this thread.
     let mut pipeline = parallel::Parallel::new(figure, mesh, settings.threads)
         .or_else(|_| parallel::Parallel::new(figure, mesh, 1))
@@ -150,16 +154,42 @@ pub fn render_with_stats(
             *frame = dof.apply(frame, settings.focal);
         }
     };
-    pipeline.render(mesh, &camera, &uniforms, &mut frame);
+    let uniforms = settings.uniforms_for(mesh);
+    pipeline.render(
+        mesh,
+        &camera,
+        &uniforms.with_shadow(shadow.as_ref()),
+        &mut frame,
+    );
     post(&mut frame);
     let stats = pipeline.stats();
     let timing = runs.map(|n| {
         time_runs(n, || {
-            pipeline.render(mesh, &camera, &uniforms, &mut frame);
+            shadow = shadow_map(figure, mesh, settings);
+            pipeline.render(
+                mesh,
+                &camera,
+                &uniforms.with_shadow(shadow.as_ref()),
+                &mut frame,
+            );
             post(&mut frame);
         })
     });
     (frame, timing, stats)
+}
+
+/// The light's shadow map when `figure` draws shadows; none otherwise, so a frame
+/// without shadows draws no map. Its near plane is the camera's.
+pub fn shadow_map(figure: Figure, mesh: &Mesh, settings: &Settings) -> Option<ShadowMap> {
+    (figure.shadows != Shadows::None).then(|| {
+        ShadowMap::render(
+            mesh,
+            &settings.light(),
+            SHADOW_MAP_SIZE,
+            settings.near,
+            figure.shadows,
+        )
+    })
 }
 
 /// `--stats`: the frame's counts, one per line, and what was left out and why.

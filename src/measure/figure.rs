@@ -3,6 +3,7 @@
 
 use crate::pipeline::draw::Cull;
 use crate::pipeline::raster::{EdgeRaster, Lines, Rasterizer, RowRaster};
+use crate::pipeline::shadow::Shadows;
 use crate::pipeline::stage::{
     SmoothPixelLight, SmoothTexturedPixelLight, TexturedPixelLight, TexturedVertexLight,
 };
@@ -85,6 +86,8 @@ pub struct Figure {
     /// How lines (and the rows' polygon edges) are walked: the handout's
     /// `Interpolate` or Bresenham's algorithm.
     pub lines: Lines,
+    /// Shadows from a shadow map, for the lit stages.
+    pub shadows: Shadows,
 }
 
 /// Something to do with a pipeline once its stage, interpolation and rasterizer
@@ -120,9 +123,23 @@ impl Attributes {
 fn with_types<I: Interpolation, R: Rasterizer, W: WithStage>(
     stage: StageName,
     attributes: Attributes,
+    shadows: bool,
     w: W,
 ) -> W::Output {
     let Attributes { normals, texture } = attributes;
+    if shadows {
+        return match stage {
+            StageName::VertexLight if texture => w.with::<TexturedVertexLight<true>, I, R>(),
+            StageName::VertexLight => w.with::<VertexLight<true>, I, R>(),
+            StageName::PixelLight if normals && texture => {
+                w.with::<SmoothTexturedPixelLight<true>, I, R>()
+            }
+            StageName::PixelLight if normals => w.with::<SmoothPixelLight<true>, I, R>(),
+            StageName::PixelLight if texture => w.with::<TexturedPixelLight<true>, I, R>(),
+            StageName::PixelLight => w.with::<PixelLight<true>, I, R>(),
+            _ => with_types::<I, R, W>(stage, attributes, false, w),
+        };
+    }
     match stage {
         StageName::Points => w.with::<Points, I, R>(),
         StageName::Wireframe => w.with::<Wireframe, I, R>(),
@@ -167,6 +184,7 @@ impl Figure {
             raster: Raster::Rows,
             cull: Cull::None,
             lines: Lines::Interpolate,
+            shadows: Shadows::None,
         },
     ];
 
@@ -178,6 +196,7 @@ impl Figure {
             raster: Raster::Rows,
             cull: Cull::None,
             lines: Lines::Interpolate,
+            shadows: Shadows::None,
         }
     }
 
@@ -203,6 +222,15 @@ impl Figure {
 
     pub fn with_lines(self, lines: Lines) -> Self {
         Figure { lines, ..self }
+    }
+
+    /// With shadows, for the lit stages; others draw no light to shadow.
+    pub fn with_shadows(self, shadows: Shadows) -> Self {
+        let lit = matches!(self.stage, StageName::VertexLight | StageName::PixelLight);
+        Figure {
+            shadows: if lit { shadows } else { Shadows::None },
+            ..self
+        }
     }
 
     /// Whether this is the handout's interpolation for its stage.
@@ -249,6 +277,11 @@ impl Figure {
         if self.lines == Lines::Bresenham {
             flags += " --lines bresenham";
         }
+        match self.shadows {
+            Shadows::None => {}
+            Shadows::Hard => flags += " --shadows",
+            Shadows::Pcf => flags += " --shadows --pcf",
+        }
         flags
     }
 
@@ -276,11 +309,12 @@ impl Figure {
     /// a mesh with `attributes`.
     pub fn with_stage<W: WithStage>(self, attributes: Attributes, w: W) -> W::Output {
         let (stage, a) = (self.stage, attributes);
+        let sh = self.shadows != Shadows::None;
         match (self.affine, self.raster) {
-            (false, Raster::Rows) => with_types::<Perspective, RowRaster, W>(stage, a, w),
-            (true, Raster::Rows) => with_types::<Affine, RowRaster, W>(stage, a, w),
-            (false, Raster::Edge) => with_types::<Perspective, EdgeRaster, W>(stage, a, w),
-            (true, Raster::Edge) => with_types::<Affine, EdgeRaster, W>(stage, a, w),
+            (false, Raster::Rows) => with_types::<Perspective, RowRaster, W>(stage, a, sh, w),
+            (true, Raster::Rows) => with_types::<Affine, RowRaster, W>(stage, a, sh, w),
+            (false, Raster::Edge) => with_types::<Perspective, EdgeRaster, W>(stage, a, sh, w),
+            (true, Raster::Edge) => with_types::<Affine, EdgeRaster, W>(stage, a, sh, w),
         }
     }
 

@@ -627,10 +627,10 @@ mod tests {
         const DEPTH_TEST: bool = true;
         const BATCH_SHADING: bool = false;
         fn vertex_shader(v: &crate::pipeline::Vertex, s: &Surface, u: &Uniforms) -> Self::Varying {
-            PixelLight::vertex_shader(v, s, u)
+            <PixelLight>::vertex_shader(v, s, u)
         }
         fn pixel_shader(v: &Self::Varying, s: &Surface, u: &Uniforms) -> Vec3 {
-            PixelLight::pixel_shader(v, s, u)
+            <PixelLight>::pixel_shader(v, s, u)
         }
     }
 

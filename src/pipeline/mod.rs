@@ -16,6 +16,7 @@
 //! - [`interpolate`](mod@interpolate): `Interpolate` for any per-pixel struct, and
 //!   perspective-correct or affine interpolation.
 //! - [`texture`]: images that a material's reflectance is read from.
+//! - [`shadow`]: a cube shadow map from the point light, for `--shadows`.
 //! - [`dof`]: depth of field, a post-process on the colour and depth buffers.
 //! - [`target`]: colour and depth buffers over a band of rows, and 8-bit packing.
 //! - [`draw`]: the handout's `Draw` and `DrawPolygon`, which joins them.
@@ -30,6 +31,7 @@ pub mod interpolate;
 pub mod light;
 pub mod mesh;
 pub mod raster;
+pub mod shadow;
 pub mod stage;
 pub mod target;
 pub mod texture;

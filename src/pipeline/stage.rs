@@ -19,6 +19,7 @@
 use super::interpolate::{linear_ops, Nothing, Varying};
 use super::light::Light;
 use super::mesh::{Material, Vertex};
+use super::shadow::ShadowMap;
 use super::texture::{Filter, Texture};
 use glam::{Vec2, Vec3};
 
@@ -34,13 +35,15 @@ pub enum Primitive {
 }
 
 /// Scene-wide inputs of the shaders, the same for every vertex and pixel of a frame.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug)]
 pub struct Uniforms<'a> {
     pub light: Light,
     /// The mesh's textures, which [`Material::texture`] indexes.
     pub textures: &'a [Texture],
     /// How textures are read between texels.
     pub filter: Filter,
+    /// The light's shadow map, for the stages drawn with shadows.
+    pub shadow: Option<&'a ShadowMap>,
 }
 
 impl Uniforms<'static> {
@@ -50,11 +53,36 @@ impl Uniforms<'static> {
             light,
             textures: &[],
             filter: Filter::Nearest,
+            shadow: None,
         }
     }
 }
 
-impl Uniforms<'_> {
+impl<'a> Uniforms<'a> {
+    /// The same with `shadow` as the shadow map (for as long as both live).
+    pub fn with_shadow<'b>(&self, shadow: Option<&'b ShadowMap>) -> Uniforms<'b>
+    where
+        'a: 'b,
+    {
+        Uniforms {
+            light: self.light,
+            textures: self.textures,
+            filter: self.filter,
+            shadow,
+        }
+    }
+    /// Eq. 11 at a surface point: with `SHADOWS` and a shadow map, the direct
+    /// light scaled by how much of it the map lets through; else the handout's.
+    /// `SHADOWS` is the stage's, fixed at compile time, so a stage without
+    /// shadows has no test here at all.
+    #[inline]
+    pub fn reflected<const SHADOWS: bool>(&self, position: Vec3, normal: Vec3, rho: Vec3) -> Vec3 {
+        match self.shadow {
+            Some(map) if SHADOWS => map.reflected(&self.light, position, normal, rho),
+            _ => self.light.reflected(position, normal, rho),
+        }
+    }
+
     /// The reflectance ρ of eq. 11 at texture coordinate `uv`: the material's
     /// texture there, or its colour if it has none.
     #[inline]
@@ -178,9 +206,9 @@ linear_ops!(Illumination { light });
 
 /// Section 6.1: eq. 10 and 11 at each vertex; the reflected light is interpolated.
 #[derive(Clone, Copy, Debug, Default)]
-pub struct VertexLight;
+pub struct VertexLight<const SHADOWS: bool = false>;
 
-impl Stage for VertexLight {
+impl<const SHADOWS: bool> Stage for VertexLight<SHADOWS> {
     type Varying = Illumination;
     const PRIMITIVE: Primitive = Primitive::Polygons;
     const DEPTH_TEST: bool = true;
@@ -188,9 +216,7 @@ impl Stage for VertexLight {
     fn vertex_shader(vertex: &Vertex, surface: &Surface, uniforms: &Uniforms) -> Illumination {
         let rho = surface.material.color;
         Illumination {
-            light: uniforms
-                .light
-                .reflected(vertex.position, vertex.normal, rho),
+            light: uniforms.reflected::<SHADOWS>(vertex.position, vertex.normal, rho),
         }
     }
 
@@ -210,9 +236,9 @@ linear_ops!(Position { world });
 /// Section 6.2: the 3D position is interpolated and eq. 10 and 11 run at each
 /// pixel with the triangle's normal and reflectance.
 #[derive(Clone, Copy, Debug, Default)]
-pub struct PixelLight;
+pub struct PixelLight<const SHADOWS: bool = false>;
 
-impl Stage for PixelLight {
+impl<const SHADOWS: bool> Stage for PixelLight<SHADOWS> {
     type Varying = Position;
     const PRIMITIVE: Primitive = Primitive::Polygons;
     const DEPTH_TEST: bool = true;
@@ -227,7 +253,7 @@ impl Stage for PixelLight {
     #[inline]
     fn pixel_shader(varying: &Position, surface: &Surface, uniforms: &Uniforms) -> Vec3 {
         let rho = surface.material.color;
-        uniforms.light.reflected(varying.world, surface.normal, rho)
+        uniforms.reflected::<SHADOWS>(varying.world, surface.normal, rho)
     }
 }
 
@@ -244,9 +270,9 @@ linear_ops!(SmoothSurface { world, normal });
 /// Section 6.2 on a smooth mesh: as [`PixelLight`], with the normal interpolated
 /// from the vertices' normals and renormalised at each pixel instead of the face's.
 #[derive(Clone, Copy, Debug, Default)]
-pub struct SmoothPixelLight;
+pub struct SmoothPixelLight<const SHADOWS: bool = false>;
 
-impl Stage for SmoothPixelLight {
+impl<const SHADOWS: bool> Stage for SmoothPixelLight<SHADOWS> {
     type Varying = SmoothSurface;
     const PRIMITIVE: Primitive = Primitive::Polygons;
     const DEPTH_TEST: bool = true;
@@ -263,7 +289,7 @@ impl Stage for SmoothPixelLight {
     fn pixel_shader(varying: &SmoothSurface, surface: &Surface, uniforms: &Uniforms) -> Vec3 {
         let rho = surface.material.color;
         let normal = varying.normal.normalize_or_zero();
-        uniforms.light.reflected(varying.world, normal, rho)
+        uniforms.reflected::<SHADOWS>(varying.world, normal, rho)
     }
 }
 
@@ -271,7 +297,7 @@ impl Stage for SmoothPixelLight {
 /// with ρ = 1) and the texture coordinate are interpolated, and each pixel
 /// multiplies the light by the reflectance its texture gives there.
 #[derive(Clone, Copy, Debug, Default)]
-pub struct TexturedVertexLight;
+pub struct TexturedVertexLight<const SHADOWS: bool = false>;
 
 /// [`TexturedVertexLight`]'s per-pixel struct.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -283,16 +309,14 @@ pub struct IlluminationUv {
 
 linear_ops!(IlluminationUv { light, uv });
 
-impl Stage for TexturedVertexLight {
+impl<const SHADOWS: bool> Stage for TexturedVertexLight<SHADOWS> {
     type Varying = IlluminationUv;
     const PRIMITIVE: Primitive = Primitive::Polygons;
     const DEPTH_TEST: bool = true;
 
     fn vertex_shader(vertex: &Vertex, _: &Surface, uniforms: &Uniforms) -> IlluminationUv {
         IlluminationUv {
-            light: uniforms
-                .light
-                .reflected(vertex.position, vertex.normal, Vec3::ONE),
+            light: uniforms.reflected::<SHADOWS>(vertex.position, vertex.normal, Vec3::ONE),
             uv: vertex.uv,
         }
     }
@@ -315,9 +339,9 @@ linear_ops!(PositionUv { world, uv });
 /// Section 6.2 with a texture: as [`PixelLight`], with ρ read from the material's
 /// texture at the interpolated texture coordinate.
 #[derive(Clone, Copy, Debug, Default)]
-pub struct TexturedPixelLight;
+pub struct TexturedPixelLight<const SHADOWS: bool = false>;
 
-impl Stage for TexturedPixelLight {
+impl<const SHADOWS: bool> Stage for TexturedPixelLight<SHADOWS> {
     type Varying = PositionUv;
     const PRIMITIVE: Primitive = Primitive::Polygons;
     const DEPTH_TEST: bool = true;
@@ -331,7 +355,7 @@ impl Stage for TexturedPixelLight {
 
     fn pixel_shader(varying: &PositionUv, surface: &Surface, uniforms: &Uniforms) -> Vec3 {
         let rho = uniforms.reflectance(&surface.material, varying.uv);
-        uniforms.light.reflected(varying.world, surface.normal, rho)
+        uniforms.reflected::<SHADOWS>(varying.world, surface.normal, rho)
     }
 }
 
@@ -347,9 +371,9 @@ linear_ops!(SmoothSurfaceUv { world, normal, uv });
 
 /// [`SmoothPixelLight`] with a texture.
 #[derive(Clone, Copy, Debug, Default)]
-pub struct SmoothTexturedPixelLight;
+pub struct SmoothTexturedPixelLight<const SHADOWS: bool = false>;
 
-impl Stage for SmoothTexturedPixelLight {
+impl<const SHADOWS: bool> Stage for SmoothTexturedPixelLight<SHADOWS> {
     type Varying = SmoothSurfaceUv;
     const PRIMITIVE: Primitive = Primitive::Polygons;
     const DEPTH_TEST: bool = true;
@@ -365,6 +389,6 @@ impl Stage for SmoothTexturedPixelLight {
     fn pixel_shader(varying: &SmoothSurfaceUv, surface: &Surface, uniforms: &Uniforms) -> Vec3 {
         let rho = uniforms.reflectance(&surface.material, varying.uv);
         let normal = varying.normal.normalize_or_zero();
-        uniforms.light.reflected(varying.world, normal, rho)
+        uniforms.reflected::<SHADOWS>(varying.world, normal, rho)
     }
 }
