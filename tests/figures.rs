@@ -6,6 +6,7 @@ mod common;
 use rasterlab::app::image_io::read_rgb_png;
 use rasterlab::app::overview::figure_one;
 use rasterlab::app::{self, Settings, OVERVIEW_FILE};
+use rasterlab::pipeline::shadow::Shadows;
 use rasterlab::pipeline::Filter;
 use rasterlab::{cornell_box, Figure};
 use std::path::Path;
@@ -173,6 +174,31 @@ fn committed_pictures_match_the_code() {
         let (frame, _) = app::render(Figure::of(pixel_light), &textured.mesh, &settings, None);
         assert_picture(&steps.join(format!("dof-{name}.png")), &frame);
     }
+    // rasterlab pixel-light [--shadows [--pcf]] --light-power 8; raytrace --shadows
+    let bright = Settings {
+        light_power: 8.0,
+        ..Settings::default()
+    };
+    for (name, shadows) in [
+        ("none", Shadows::None),
+        ("map", Shadows::Hard),
+        ("pcf", Shadows::Pcf),
+    ] {
+        let figure = Figure::of(pixel_light).with_shadows(shadows);
+        let (frame, _) = app::render(figure, &cornell_box(), &bright, None);
+        assert_picture(&steps.join(format!("shadows-{name}.png")), &frame);
+    }
+    let rays = rasterlab::measure::raytrace::Options {
+        shadows: true,
+        ..Default::default()
+    };
+    let traced = rasterlab::measure::raytrace::raytrace(
+        &cornell_box(),
+        &bright.camera(),
+        &bright.light(),
+        &rays,
+    );
+    assert_picture(&steps.join("shadows-rays.png"), &traced.frame);
     // rasterlab depth --buffer
     let (depth, _) = app::render(
         Figure::of(rasterlab::StageName::Depth),

@@ -190,3 +190,16 @@ fn g_focuses_depth_of_field_on_the_centre() {
     assert!(joined.contains("--dof 3.054"), "{joined}");
     assert_renderer_agrees(&dir, &args, &shot);
 }
+
+#[test]
+#[ignore = "needs Xvfb; .ci/run runs it with --ignored"]
+fn m_cycles_shadows_and_moving_the_light_moves_them() {
+    let dir = temp_dir("viewer-shadows");
+    let shot = dir.join("shot.png");
+    // Shadows, then filtered ones; then the light moves left.
+    let keys = script("m,none,m,a*10", "14", &shot);
+    let args = view(&dir, &keys);
+    let joined = args.join(" ");
+    assert!(joined.contains("--shadows --pcf"), "{joined}");
+    assert_renderer_agrees(&dir, &args, &shot);
+}

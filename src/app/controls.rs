@@ -55,6 +55,8 @@ pub enum Action {
     ToggleFilter,
     /// Depth of field on or off (g).
     ToggleDepthOfField,
+    /// Shadows: none, from the shadow map, filtered (m).
+    CycleShadows,
     /// Save the current frame as a PNG (c).
     Save,
     /// Print the key list (h).
@@ -72,7 +74,8 @@ keys: up/down move the camera forward/back, left/right turn it (yaw),
       7 pixel-light --affine; p toggles perspective-correct interpolation;
       x switches between the rows rasterizer and the exact edge rasterizer;
       t toggles textures (the checker, or the model's own), b bilinear filtering,
-      g depth of field (--dof's, or focused on what the centre pixel shows);
+      g depth of field (--dof's, or focused on what the centre pixel shows),
+      m shadows: none, --shadows, --shadows --pcf;
       c saves the frame as a PNG; h prints this list; Esc quits.";
 
 /// Speeds of held keys and of the mouse. Movement is per second, so it feels the
@@ -194,6 +197,7 @@ pub fn action(key: Key) -> Option<Action> {
         Key::Char('t') => Some(Action::ToggleTexture),
         Key::Char('b') => Some(Action::ToggleFilter),
         Key::Char('g') => Some(Action::ToggleDepthOfField),
+        Key::Char('m') => Some(Action::CycleShadows),
         Key::Char('c') => Some(Action::Save),
         Key::Char('h') => Some(Action::Help),
         Key::Escape => Some(Action::Quit),

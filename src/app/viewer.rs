@@ -9,6 +9,7 @@ use super::parallel::Parallel;
 use super::Settings;
 use crate::measure::figure::{Figure, Raster, StageName};
 use crate::pipeline::dof::DepthOfField;
+use crate::pipeline::shadow::Shadows;
 use crate::pipeline::{Filter, Frame, Mesh};
 use crate::scene::texture::{apply_texture, TextureSpec};
 use std::collections::VecDeque;
@@ -260,6 +261,8 @@ pub fn run(options: Options) -> Result<Summary, String> {
     let mut textured = had_texture;
     // `g` switches between none and this: --dof's, or set at the first `g`.
     let mut dof = options.settings.dof;
+    // Kept apart from the view, which drops them on stages without light.
+    let mut shadows = options.view.shadows;
     let mut scene = given.clone();
     let controls = Controls::default();
     let mut settings = options.settings;
@@ -303,8 +306,11 @@ pub fn run(options: Options) -> Result<Summary, String> {
         for key in pressed(&held, &held_before) {
             match action(key) {
                 Some(Action::Show(v)) => {
-                    // A figure key keeps the rasterizer and culling chosen.
-                    view = v.with_raster(view.raster).with_cull(view.cull);
+                    // A figure key keeps the rasterizer, culling and shadows chosen.
+                    view = v
+                        .with_raster(view.raster)
+                        .with_cull(view.cull)
+                        .with_shadows(shadows);
                     pipeline = Parallel::new(view, &scene, threads)?;
                 }
                 Some(Action::TogglePerspective) => {
@@ -327,6 +333,15 @@ pub fn run(options: Options) -> Result<Summary, String> {
                                 .clone(),
                         }
                     };
+                    pipeline = Parallel::new(view, &scene, threads)?;
+                }
+                Some(Action::CycleShadows) => {
+                    shadows = match shadows {
+                        Shadows::None => Shadows::Hard,
+                        Shadows::Hard => Shadows::Pcf,
+                        Shadows::Pcf => Shadows::None,
+                    };
+                    view = view.with_shadows(shadows);
                     pipeline = Parallel::new(view, &scene, threads)?;
                 }
                 Some(Action::ToggleDepthOfField) => {
@@ -363,10 +378,12 @@ pub fn run(options: Options) -> Result<Summary, String> {
         }
 
         let draw_start = Instant::now();
+        // The light may have moved: the shadow map is drawn for each frame.
+        let shadow = super::shadow_map(view, &scene, &settings);
         pipeline.render(
             &scene,
             &settings.camera(),
-            &settings.uniforms_for(&scene),
+            &settings.uniforms_for(&scene).with_shadow(shadow.as_ref()),
             &mut frame,
         );
         if let Some(d) = settings.dof {
