@@ -10,7 +10,7 @@ use rasterlab::pipeline::draw::Cull;
 use rasterlab::pipeline::raster::Lines;
 use rasterlab::pipeline::shadow::Shadows;
 use rasterlab::pipeline::Filter;
-use rasterlab::scene::texture::{apply_texture, TextureSpec};
+use rasterlab::scene::texture::{apply_normal_map, apply_texture, parse_normal_map, TextureSpec};
 use rasterlab::scene::{framed_pose, parse_scene, write_obj, Scene};
 use rasterlab::{Figure, StageName};
 use std::path::PathBuf;
@@ -150,6 +150,10 @@ struct SceneArgs {
     /// How textures are read between texels.
     #[arg(long, value_enum, default_value = "nearest")]
     filter: FilterArg,
+    /// Pixel-light only: tilt each pixel's normal by a tangent-space normal map,
+    /// bumps (round domes) or an image PATH, on the surfaces --texture would cover.
+    #[arg(long, value_name = "bumps|PATH")]
+    normal_map: Option<String>,
     /// Depth, vertex-light and pixel-light: depth of field, a blur that follows
     /// each pixel's circle of confusion, focused at depth FOCUS with a lens of
     /// radius APERTURE (world units).
@@ -175,6 +179,10 @@ impl SceneArgs {
         let mut scene = load_scene(&self.scene)?;
         if let Some(spec) = &self.texture {
             apply_texture(&mut scene, &TextureSpec::parse(spec)).map_err(Failure::Run)?;
+        }
+        if let Some(spec) = &self.normal_map {
+            let map = parse_normal_map(spec).map_err(Failure::Run)?;
+            apply_normal_map(&mut scene, map);
         }
         let mut settings = Settings {
             width: self.size.0,
@@ -793,6 +801,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 mesh: scene.mesh,
                 scene: a.scene.scene.clone(),
                 texture: a.scene.texture.clone(),
+                normal_map: a.scene.normal_map.clone(),
                 view: a.draw.figure(a.stage),
                 frames: a.frames,
                 screenshot: a.screenshot.clone(),
@@ -906,6 +915,13 @@ fn refuse_unused_options(command: &str, m: &ArgMatches) -> Result<(), String> {
             _ => {}
         }
     }
+    let traced_lit = command == "raytrace" && !m.get_flag("flat");
+    let pixel_light = stage == Some(StageName::PixelLight);
+    if given("normal_map") && !(pixel_light || traced_lit || command == "view") {
+        return Err(format!(
+            "--normal-map does nothing for {what}: only pixel-light, raytrace without --flat and the viewer tilt normals per pixel"
+        ));
+    }
     if given("shadows") && !(lit || command == "raytrace" || command == "view") {
         return Err(format!(
             "--shadows does nothing for {what}: only vertex-light and pixel-light are lit"
@@ -916,7 +932,6 @@ fn refuse_unused_options(command: &str, m: &ArgMatches) -> Result<(), String> {
             "--dof does nothing for {what}: only depth, vertex-light, pixel-light and the viewer have the depth buffer it needs"
         ));
     }
-    let traced_lit = command == "raytrace" && !m.get_flag("flat");
     if (given("texture") || given("filter")) && !(lit || traced_lit || command == "view") {
         let id = if given("texture") {
             "texture"

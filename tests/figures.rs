@@ -199,6 +199,19 @@ fn committed_pictures_match_the_code() {
         &rays,
     );
     assert_picture(&steps.join("shadows-rays.png"), &traced.frame);
+    // rasterlab pixel-light --normal-map bumps; raytrace --normal-map bumps
+    let mut bumped = rasterlab::scene::parse_scene("cornell").unwrap();
+    rasterlab::scene::texture::apply_normal_map(&mut bumped, rasterlab::scene::texture::bumps());
+    let s = Settings::default();
+    let (frame, _) = app::render(Figure::of(pixel_light), &bumped.mesh, &s, None);
+    assert_picture(&steps.join("normal-map-bumps.png"), &frame);
+    let traced = rasterlab::measure::raytrace::raytrace(
+        &bumped.mesh,
+        &s.camera(),
+        &s.light(),
+        &Default::default(),
+    );
+    assert_picture(&steps.join("normal-map-rays.png"), &traced.frame);
     // rasterlab depth --buffer
     let (depth, _) = app::render(
         Figure::of(rasterlab::StageName::Depth),

@@ -203,3 +203,14 @@ fn m_cycles_shadows_and_moving_the_light_moves_them() {
     assert!(joined.contains("--shadows --pcf"), "{joined}");
     assert_renderer_agrees(&dir, &args, &shot);
 }
+
+#[test]
+#[ignore = "needs Xvfb; .ci/run runs it with --ignored"]
+fn n_toggles_the_bumps() {
+    let dir = temp_dir("viewer-normal-map");
+    let shot = dir.join("shot.png");
+    let keys = script("n", "3", &shot);
+    let args = view(&dir, &keys);
+    assert!(args.join(" ").contains("--normal-map bumps"), "{args:?}");
+    assert_renderer_agrees(&dir, &args, &shot);
+}

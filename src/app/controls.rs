@@ -51,6 +51,8 @@ pub enum Action {
     ToggleRaster,
     /// Textures on or off (t): `--texture`'s, a model's own, or the checker.
     ToggleTexture,
+    /// The normal map on or off (n): `--normal-map`'s, a model's own, or bumps.
+    ToggleNormalMap,
     /// Nearest or bilinear texture filtering (b).
     ToggleFilter,
     /// Depth of field on or off (g).
@@ -73,7 +75,8 @@ keys: up/down move the camera forward/back, left/right turn it (yaw),
       1 points, 2 wireframe, 3 filled, 4 depth, 5 vertex-light, 6 pixel-light,
       7 pixel-light --affine; p toggles perspective-correct interpolation;
       x switches between the rows rasterizer and the exact edge rasterizer;
-      t toggles textures (the checker, or the model's own), b bilinear filtering,
+      t toggles textures (the checker, or the model's own), n the normal map
+      (bumps, or --normal-map's), b bilinear filtering,
       g depth of field (--dof's, or focused on what the centre pixel shows),
       m shadows: none, --shadows, --shadows --pcf;
       c saves the frame as a PNG; h prints this list; Esc quits.";
@@ -196,6 +199,7 @@ pub fn action(key: Key) -> Option<Action> {
         Key::Char('x') => Some(Action::ToggleRaster),
         Key::Char('t') => Some(Action::ToggleTexture),
         Key::Char('b') => Some(Action::ToggleFilter),
+        Key::Char('n') => Some(Action::ToggleNormalMap),
         Key::Char('g') => Some(Action::ToggleDepthOfField),
         Key::Char('m') => Some(Action::CycleShadows),
         Key::Char('c') => Some(Action::Save),

@@ -11,7 +11,7 @@ use crate::measure::figure::{Figure, Raster, StageName};
 use crate::pipeline::dof::DepthOfField;
 use crate::pipeline::shadow::Shadows;
 use crate::pipeline::{Filter, Frame, Mesh};
-use crate::scene::texture::{apply_texture, TextureSpec};
+use crate::scene::texture::{apply_normal_map, apply_texture, bumps, TextureSpec};
 use std::collections::VecDeque;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -25,6 +25,8 @@ pub struct Options {
     pub scene: String,
     /// The `--texture` spec the mesh was given, if any.
     pub texture: Option<String>,
+    /// The `--normal-map` spec the mesh was given, if any.
+    pub normal_map: Option<String>,
     pub view: Figure,
     /// Quit after this many frames.
     pub frames: Option<u64>,
@@ -55,6 +57,8 @@ pub struct Summary {
     /// The `--texture` spec that draws the last frame's textures, if it had any
     /// that the scene alone does not give.
     pub texture: Option<String>,
+    /// The same for the normal map.
+    pub normal_map: Option<String>,
 }
 
 impl Summary {
@@ -70,6 +74,9 @@ impl Summary {
         );
         if let (Some(texture), true) = (&self.texture, lit) {
             command += &format!(" --texture {texture}");
+        }
+        if let (Some(map), StageName::PixelLight) = (&self.normal_map, self.view.stage) {
+            command += &format!(" --normal-map {map}");
         }
         if self.settings.filter == crate::pipeline::Filter::Bilinear && lit {
             command += " --filter bilinear";
@@ -95,20 +102,37 @@ fn autofocus(frame: &Frame) -> DepthOfField {
     }
 }
 
-/// `mesh` with its textures toggled: without them if it has any, else with the
-/// checker (on the room's walls for the box, named by `spec`).
-fn toggle_texture(mesh: &Mesh, spec: &str) -> Result<Mesh, String> {
-    if mesh.materials.iter().any(|m| m.texture.is_some()) {
-        let mut plain = mesh.clone();
-        plain.materials.iter_mut().for_each(|m| m.texture = None);
-        return Ok(plain);
-    }
+/// The mesh the viewer draws: `given` with its textures and its normal map each
+/// toggled when asked (`t`, `n`): taken off if it had them, else the checker or
+/// the bumps put on (on the room for the box, which `spec` names).
+fn toggled_mesh(given: &Mesh, spec: &str, texture: bool, normal_map: bool) -> Result<Mesh, String> {
     let mut scene = crate::scene::Scene {
         name: spec.to_string(),
-        mesh: mesh.clone(),
+        mesh: given.clone(),
         is_box: spec == "cornell" || spec.starts_with("cornell:"),
     };
-    apply_texture(&mut scene, &TextureSpec::Checker)?;
+    if texture {
+        if given.materials.iter().any(|m| m.texture.is_some()) {
+            scene
+                .mesh
+                .materials
+                .iter_mut()
+                .for_each(|m| m.texture = None);
+        } else {
+            apply_texture(&mut scene, &TextureSpec::Checker)?;
+        }
+    }
+    if normal_map {
+        if given.materials.iter().any(|m| m.normal_map.is_some()) {
+            scene
+                .mesh
+                .materials
+                .iter_mut()
+                .for_each(|m| m.normal_map = None);
+        } else {
+            apply_normal_map(&mut scene, bumps());
+        }
+    }
     Ok(scene.mesh)
 }
 
@@ -252,13 +276,11 @@ pub fn run(options: Options) -> Result<Summary, String> {
         })?;
     window.set_target_fps(options.fps);
 
-    // The mesh as given, and the same with textures toggled (`t`): without them,
-    // or with the checker if it had none.
+    // The mesh as given; `t` and `n` toggle its textures and normal map.
     let given = options.mesh.clone();
     let had_texture = given.materials.iter().any(|m| m.texture.is_some());
-    // Made at the first `t`: a large mesh is copied only if asked.
-    let mut toggled: Option<Mesh> = None;
-    let mut textured = had_texture;
+    let had_normal_map = given.materials.iter().any(|m| m.normal_map.is_some());
+    let (mut textured, mut bumped) = (had_texture, had_normal_map);
     // `g` switches between none and this: --dof's, or set at the first `g`.
     let mut dof = options.settings.dof;
     // Kept apart from the view, which drops them on stages without light.
@@ -321,18 +343,18 @@ pub fn run(options: Options) -> Result<Summary, String> {
                     view = controls::toggle_raster(view);
                     pipeline = Parallel::new(view, &scene, threads)?;
                 }
-                Some(Action::ToggleTexture) => {
-                    textured = !textured;
-                    scene = if textured == had_texture {
-                        given.clone()
+                Some(action @ (Action::ToggleTexture | Action::ToggleNormalMap)) => {
+                    if action == Action::ToggleTexture {
+                        textured = !textured;
                     } else {
-                        match &toggled {
-                            Some(mesh) => mesh.clone(),
-                            None => toggled
-                                .insert(toggle_texture(&given, &options.scene)?)
-                                .clone(),
-                        }
-                    };
+                        bumped = !bumped;
+                    }
+                    scene = toggled_mesh(
+                        &given,
+                        &options.scene,
+                        textured != had_texture,
+                        bumped != had_normal_map,
+                    )?;
                     pipeline = Parallel::new(view, &scene, threads)?;
                 }
                 Some(Action::CycleShadows) => {
@@ -414,6 +436,11 @@ pub fn run(options: Options) -> Result<Summary, String> {
         texture: match (textured, had_texture) {
             (true, true) => options.texture,
             (true, false) => Some("checker".into()),
+            (false, _) => None,
+        },
+        normal_map: match (bumped, had_normal_map) {
+            (true, true) => options.normal_map,
+            (true, false) => Some("bumps".into()),
             (false, _) => None,
         },
     })

@@ -5,7 +5,8 @@ use crate::pipeline::draw::Cull;
 use crate::pipeline::raster::{EdgeRaster, Lines, Rasterizer, RowRaster};
 use crate::pipeline::shadow::Shadows;
 use crate::pipeline::stage::{
-    SmoothPixelLight, SmoothTexturedPixelLight, TexturedPixelLight, TexturedVertexLight,
+    NormalMappedPixelLight, SmoothPixelLight, SmoothTexturedPixelLight, TexturedPixelLight,
+    TexturedVertexLight,
 };
 use crate::pipeline::{
     Affine, Camera, Depth, Filled, Frame, Interpolation, Mesh, Perspective, Pipeline, PixelLight,
@@ -105,6 +106,8 @@ pub struct Attributes {
     /// Texture coordinates and a material with a texture, for the lit stages to
     /// read ρ from.
     pub texture: bool,
+    /// Texture coordinates and a material with a normal map, for light per pixel.
+    pub normal_map: bool,
 }
 
 impl Attributes {
@@ -112,6 +115,8 @@ impl Attributes {
         Attributes {
             normals: !mesh.normals.is_empty(),
             texture: !mesh.uvs.is_empty() && mesh.materials.iter().any(|m| m.texture.is_some()),
+            normal_map: !mesh.uvs.is_empty()
+                && mesh.materials.iter().any(|m| m.normal_map.is_some()),
         }
     }
 }
@@ -126,9 +131,14 @@ fn with_types<I: Interpolation, R: Rasterizer, W: WithStage>(
     shadows: bool,
     w: W,
 ) -> W::Output {
-    let Attributes { normals, texture } = attributes;
+    let Attributes {
+        normals,
+        texture,
+        normal_map,
+    } = attributes;
     if shadows {
         return match stage {
+            StageName::PixelLight if normal_map => w.with::<NormalMappedPixelLight<true>, I, R>(),
             StageName::VertexLight if texture => w.with::<TexturedVertexLight<true>, I, R>(),
             StageName::VertexLight => w.with::<VertexLight<true>, I, R>(),
             StageName::PixelLight if normals && texture => {
@@ -145,6 +155,7 @@ fn with_types<I: Interpolation, R: Rasterizer, W: WithStage>(
         StageName::Wireframe => w.with::<Wireframe, I, R>(),
         StageName::Filled => w.with::<Filled, I, R>(),
         StageName::Depth => w.with::<Depth, I, R>(),
+        StageName::PixelLight if normal_map => w.with::<NormalMappedPixelLight, I, R>(),
         StageName::VertexLight if texture => w.with::<TexturedVertexLight, I, R>(),
         StageName::VertexLight => w.with::<VertexLight, I, R>(),
         StageName::PixelLight if normals && texture => w.with::<SmoothTexturedPixelLight, I, R>(),

@@ -4,6 +4,7 @@
 //! measured against (`rasterlab report`) comes from here.
 
 use crate::measure::bvh::Bvh;
+use crate::pipeline::mesh::tangent_frame;
 use crate::pipeline::target::pack;
 use crate::pipeline::{Camera, Filter, Frame, Light, Mesh, Texture};
 use glam::{Vec2, Vec3};
@@ -56,10 +57,21 @@ pub struct Scene {
     pub bvh: Bvh,
     /// Per face, its three vertex normals; empty for a mesh without them.
     normals: Vec<[Vec3; 3]>,
-    /// Per face, its texture and three texture coordinates; empty for a mesh
-    /// without textured materials or without texture coordinates.
-    textured: Vec<Option<(u32, [Vec2; 3])>>,
+    /// Per face, what its material maps and where; empty for a mesh without
+    /// textures or without texture coordinates.
+    mapped: Vec<Option<Mapping>>,
     textures: Vec<Texture>,
+}
+
+/// A face's texture and normal map, its corners' texture coordinates and its
+/// tangent frame.
+#[derive(Clone, Copy, Debug)]
+struct Mapping {
+    texture: Option<u32>,
+    normal_map: Option<u32>,
+    uv: [Vec2; 3],
+    tangent: Vec3,
+    bitangent: Vec3,
 }
 
 impl Scene {
@@ -72,21 +84,30 @@ impl Scene {
                 .map(|f| f.vertices.map(|i| mesh.normals[i as usize]))
                 .collect()
         };
-        let textured = if mesh.uvs.is_empty() || mesh.textures.is_empty() {
+        let mapped = if mesh.uvs.is_empty() || mesh.textures.is_empty() {
             Vec::new()
         } else {
             mesh.faces
                 .iter()
                 .map(|f| {
-                    let uvs = f.vertices.map(|i| mesh.uvs[i as usize]);
-                    mesh.material(f).texture.map(|t| (t, uvs))
+                    let m = mesh.material(f);
+                    let uv = f.vertices.map(|i| mesh.uvs[i as usize]);
+                    let p = f.vertices.map(|i| mesh.positions[i as usize]);
+                    let (tangent, bitangent) = tangent_frame(p, uv, f.normal);
+                    (m.texture.is_some() || m.normal_map.is_some()).then_some(Mapping {
+                        texture: m.texture,
+                        normal_map: m.normal_map,
+                        uv,
+                        tangent,
+                        bitangent,
+                    })
                 })
                 .collect()
         };
         Scene {
             bvh: Bvh::new(mesh.triangles().collect()),
             normals,
-            textured,
+            mapped,
             textures: mesh.textures.clone(),
         }
     }
@@ -106,29 +127,45 @@ impl Scene {
     }
 
     /// The surface normal of triangle `i` at `hit`: the face's, or its vertex
-    /// normals weighted by the hit's barycentric coordinates, renormalised.
-    fn normal(&self, i: usize, hit: Vec3) -> Vec3 {
+    /// normals weighted by the hit's barycentric coordinates, renormalised; then
+    /// tilted by the face's normal map, if it has one, as the rasterizer does.
+    fn normal(&self, i: usize, hit: Vec3, filter: Filter) -> Vec3 {
         let tri = &self.bvh.triangles[i];
-        let (Some(n), Some((u, v))) = (self.normals.get(i), self.barycentric(i, hit)) else {
-            return tri.normal;
+        let weights = self.barycentric(i, hit);
+        let normal = match (self.normals.get(i), weights) {
+            (Some(n), Some((u, v))) => {
+                (n[0] * (1.0 - u - v) + n[1] * u + n[2] * v).normalize_or(tri.normal)
+            }
+            _ => tri.normal,
         };
-        (n[0] * (1.0 - u - v) + n[1] * u + n[2] * v).normalize_or_zero()
+        let (Some(&Some(m)), Some((u, v))) = (self.mapped.get(i), weights) else {
+            return normal;
+        };
+        let map = m.normal_map.and_then(|t| self.textures.get(t as usize));
+        match map {
+            Some(map) if m.tangent != Vec3::ZERO => {
+                let uv = m.uv[0] * (1.0 - u - v) + m.uv[1] * u + m.uv[2] * v;
+                let n = map.sample(uv, filter) * 2.0 - Vec3::ONE;
+                (m.tangent * n.x + m.bitangent * n.y + normal * n.z).normalize_or(normal)
+            }
+            _ => normal,
+        }
     }
 
     /// The reflectance ρ of triangle `i` at `hit`: its texture at the texture
     /// coordinate the hit's barycentric weights give, or its colour.
     fn reflectance(&self, i: usize, hit: Vec3, filter: Filter) -> Vec3 {
         let tri = &self.bvh.triangles[i];
-        let Some(&Some((texture, uv))) = self.textured.get(i) else {
+        let Some(&Some(m)) = self.mapped.get(i) else {
             return tri.color;
         };
         let (Some(texture), Some((u, v))) = (
-            self.textures.get(texture as usize),
+            m.texture.and_then(|t| self.textures.get(t as usize)),
             self.barycentric(i, hit),
         ) else {
             return tri.color;
         };
-        texture.sample(uv[0] * (1.0 - u - v) + uv[1] * u + uv[2] * v, filter)
+        texture.sample(m.uv[0] * (1.0 - u - v) + m.uv[1] * u + m.uv[2] * v, filter)
     }
 }
 
@@ -158,7 +195,7 @@ pub fn trace(
             if blocked {
                 rho * light.indirect
             } else {
-                light.reflected(hit, scene.normal(i, hit), rho)
+                light.reflected(hit, scene.normal(i, hit, options.filter), rho)
             }
         }
     };

@@ -9,7 +9,7 @@ use super::clip::{
     ScreenVertex,
 };
 use super::interpolate::{Interpolation, Perspective, Pixel, Varying};
-use super::mesh::Mesh;
+use super::mesh::{tangent_frame, Mesh};
 use super::raster::{Bounds, Lines, Rasterizer, RowRaster, Viewport};
 use super::stage::{Primitive, Stage, Surface, Uniforms};
 use super::target::{pack, Frame, Target};
@@ -181,9 +181,21 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Pipeline<S, I, R> {
                     continue;
                 }
             }
+            let (tangent, bitangent) = if S::TANGENTS && !mesh.uvs.is_empty() {
+                let at = |k: usize| face.vertices[k] as usize;
+                tangent_frame(
+                    [0, 1, 2].map(|k| mesh.positions[at(k)]),
+                    [0, 1, 2].map(|k| mesh.uvs[at(k)]),
+                    face.normal,
+                )
+            } else {
+                (Vec3::ZERO, Vec3::ZERO)
+            };
             let surface = Surface {
                 normal: face.normal,
                 material: *mesh.material(face),
+                tangent,
+                bitangent,
             };
             let corners = [0, 1, 2].map(|k| CameraVertex {
                 position: camera_space[face.vertices[k] as usize],

@@ -16,6 +16,9 @@ pub struct Material {
     /// Index into [`Mesh::textures`]: where the mesh has texture coordinates, ρ
     /// is read from this texture instead of `color` (an OBJ's `map_Kd`).
     pub texture: Option<u32>,
+    /// Index into [`Mesh::textures`]: a tangent-space normal map that tilts the
+    /// surface's normal per pixel, where the mesh has texture coordinates.
+    pub normal_map: Option<u32>,
 }
 
 impl Material {
@@ -24,6 +27,7 @@ impl Material {
         Material {
             color,
             texture: None,
+            normal_map: None,
         }
     }
 }
@@ -88,6 +92,23 @@ impl Triangle {
     pub fn vertices(&self) -> [Vec3; 3] {
         [self.v0, self.v1, self.v2]
     }
+}
+
+/// The directions of increasing u and v on a triangle with corners `p` and
+/// texture coordinates `uv`, made perpendicular to `normal` and unit length: the
+/// tangent frame a tangent-space normal map is read in. Zero vectors where the
+/// coordinates do not span the triangle.
+pub fn tangent_frame(p: [Vec3; 3], uv: [Vec2; 3], normal: Vec3) -> (Vec3, Vec3) {
+    let (e1, e2) = (p[1] - p[0], p[2] - p[0]);
+    let (d1, d2) = (uv[1] - uv[0], uv[2] - uv[0]);
+    let det = d1.x * d2.y - d2.x * d1.y;
+    if det == 0.0 || !det.is_finite() {
+        return (Vec3::ZERO, Vec3::ZERO);
+    }
+    let tangent = (e1 * d2.y - e2 * d1.y) / det;
+    let bitangent = (e2 * d1.x - e1 * d2.x) / det;
+    let along = |v: Vec3| (v - normal * normal.dot(v)).normalize_or_zero();
+    (along(tangent), along(bitangent))
 }
 
 /// The handout's face normal, `normalize((v2 - v0) × (v1 - v0))`; zero for a
@@ -172,6 +193,26 @@ impl Mesh {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_tangent_frame_follows_u_and_v() {
+        // A triangle in the z = 0 plane whose texture coordinates are its x and
+        // -y (v up, y down): u grows along x, v along -y.
+        let p = [
+            Vec3::ZERO,
+            Vec3::new(2.0, 0.0, 0.0),
+            Vec3::new(0.0, -2.0, 0.0),
+        ];
+        let uv = [Vec2::ZERO, Vec2::new(1.0, 0.0), Vec2::new(0.0, 1.0)];
+        let (t, b) = tangent_frame(p, uv, Vec3::Z);
+        assert!((t - Vec3::X).length() < 1e-6, "{t}");
+        assert!((b + Vec3::Y).length() < 1e-6, "{b}");
+        // Coordinates that do not span the triangle give no frame.
+        assert_eq!(
+            tangent_frame(p, [Vec2::ZERO; 3], Vec3::Z),
+            (Vec3::ZERO, Vec3::ZERO)
+        );
+    }
 
     #[test]
     fn triangles_round_trip_through_a_mesh() {

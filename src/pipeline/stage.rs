@@ -15,6 +15,7 @@
 //! | [`TexturedVertexLight`] | 6.1, with a texture | polygons | yes | [`IlluminationUv`]: the light and the texture coordinate |
 //! | [`TexturedPixelLight`] | 6.2, with a texture | polygons | yes | [`PositionUv`]: the 3D position and the texture coordinate |
 //! | [`SmoothTexturedPixelLight`] | 6.2, with vertex normals and a texture | polygons | yes | [`SmoothSurfaceUv`] |
+//! | [`NormalMappedPixelLight`] | 6.2, with a normal map | polygons | yes | [`SmoothSurfaceUv`] |
 
 use super::interpolate::{linear_ops, Nothing, Varying};
 use super::light::Light;
@@ -83,6 +84,26 @@ impl<'a> Uniforms<'a> {
         }
     }
 
+    /// The normal at texture coordinate `uv` of a surface whose geometric normal
+    /// is `normal`: the material's normal map read there (a colour c encodes the
+    /// tangent-space normal 2c - 1) and turned into the surface's tangent frame;
+    /// `normal` itself without a map or a frame.
+    #[inline]
+    pub fn mapped_normal(&self, surface: &Surface, normal: Vec3, uv: Vec2) -> Vec3 {
+        let map = surface
+            .material
+            .normal_map
+            .and_then(|i| self.textures.get(i as usize));
+        match map {
+            Some(map) if surface.tangent != Vec3::ZERO => {
+                let n = map.sample(uv, self.filter) * 2.0 - Vec3::ONE;
+                (surface.tangent * n.x + surface.bitangent * n.y + normal * n.z)
+                    .normalize_or(normal)
+            }
+            _ => normal,
+        }
+    }
+
     /// The reflectance ρ of eq. 11 at texture coordinate `uv`: the material's
     /// texture there, or its colour if it has none.
     #[inline]
@@ -100,6 +121,10 @@ impl<'a> Uniforms<'a> {
 pub struct Surface {
     pub normal: Vec3,
     pub material: Material,
+    /// The face's tangent frame (directions of increasing u and v), for stages
+    /// with [`Stage::TANGENTS`]; zero for the others.
+    pub tangent: Vec3,
+    pub bitangent: Vec3,
 }
 
 /// One stage of the handout.
@@ -114,6 +139,9 @@ pub trait Stage: Send + 'static {
     /// worth it for a shader heavy enough to gain from a vectorised loop. The
     /// same pixel shader runs either way, on the same pixels.
     const BATCH_SHADING: bool = false;
+    /// Whether the pixel shader reads [`Surface::tangent`] and `bitangent`, which
+    /// the core then computes for each face.
+    const TANGENTS: bool = false;
 
     /// The stage's part of the handout's `VertexShader` (the projection is the
     /// core's): what the pixels of this vertex's triangle interpolate.
@@ -369,6 +397,17 @@ pub struct SmoothSurfaceUv {
 
 linear_ops!(SmoothSurfaceUv { world, normal, uv });
 
+impl SmoothSurfaceUv {
+    /// A vertex's position, normal and texture coordinate, as they are.
+    pub fn of(vertex: &Vertex) -> Self {
+        SmoothSurfaceUv {
+            world: vertex.position,
+            normal: vertex.normal,
+            uv: vertex.uv,
+        }
+    }
+}
+
 /// [`SmoothPixelLight`] with a texture.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct SmoothTexturedPixelLight<const SHADOWS: bool = false>;
@@ -379,16 +418,37 @@ impl<const SHADOWS: bool> Stage for SmoothTexturedPixelLight<SHADOWS> {
     const DEPTH_TEST: bool = true;
 
     fn vertex_shader(vertex: &Vertex, _: &Surface, _: &Uniforms) -> SmoothSurfaceUv {
-        SmoothSurfaceUv {
-            world: vertex.position,
-            normal: vertex.normal,
-            uv: vertex.uv,
-        }
+        SmoothSurfaceUv::of(vertex)
     }
 
     fn pixel_shader(varying: &SmoothSurfaceUv, surface: &Surface, uniforms: &Uniforms) -> Vec3 {
         let rho = uniforms.reflectance(&surface.material, varying.uv);
         let normal = varying.normal.normalize_or_zero();
+        uniforms.reflected::<SHADOWS>(varying.world, normal, rho)
+    }
+}
+
+/// Section 6.2 with a normal map: the position, the normal (the vertices' where
+/// the mesh has them, else the face's) and the texture coordinate are
+/// interpolated; each pixel tilts its normal by the map in the face's tangent
+/// frame, and reads ρ from the material's texture if it has one.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct NormalMappedPixelLight<const SHADOWS: bool = false>;
+
+impl<const SHADOWS: bool> Stage for NormalMappedPixelLight<SHADOWS> {
+    type Varying = SmoothSurfaceUv;
+    const PRIMITIVE: Primitive = Primitive::Polygons;
+    const DEPTH_TEST: bool = true;
+    const TANGENTS: bool = true;
+
+    fn vertex_shader(vertex: &Vertex, _: &Surface, _: &Uniforms) -> SmoothSurfaceUv {
+        SmoothSurfaceUv::of(vertex)
+    }
+
+    fn pixel_shader(varying: &SmoothSurfaceUv, surface: &Surface, uniforms: &Uniforms) -> Vec3 {
+        let rho = uniforms.reflectance(&surface.material, varying.uv);
+        let normal = varying.normal.normalize_or(surface.normal);
+        let normal = uniforms.mapped_normal(surface, normal, varying.uv);
         uniforms.reflected::<SHADOWS>(varying.world, normal, rho)
     }
 }

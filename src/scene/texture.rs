@@ -77,24 +77,8 @@ pub fn apply_texture(scene: &mut Scene, spec: &TextureSpec) -> Result<(), String
         TextureSpec::Checker => None,
         TextureSpec::Image(path) => Some(load_texture(path)?),
     };
+    let textured = surfaces_to_map(scene);
     let mesh = &mut scene.mesh;
-    if mesh.uvs.is_empty() {
-        *mesh = planar_uvs(mesh);
-    }
-    let textured: Vec<bool> = if scene.is_box {
-        // The room is the box's first ten faces, in colours no block uses.
-        let room = super::cornell_box();
-        let colours: Vec<Vec3> = room.faces[..10]
-            .iter()
-            .map(|f| room.material(f).color)
-            .collect();
-        mesh.materials
-            .iter()
-            .map(|m| colours.contains(&m.color))
-            .collect()
-    } else {
-        vec![true; mesh.materials.len()]
-    };
     let shared = image.map(|t| {
         mesh.textures.push(t);
         mesh.textures.len() as u32 - 1
@@ -116,6 +100,80 @@ pub fn apply_texture(scene: &mut Scene, spec: &TextureSpec) -> Result<(), String
         };
     }
     Ok(())
+}
+
+/// Which of `scene`'s materials a texture or normal map goes on: the box's room
+/// (its walls, floor and ceiling), or every material of another scene. Gives the
+/// mesh texture coordinates from its geometry if it has none.
+fn surfaces_to_map(scene: &mut Scene) -> Vec<bool> {
+    let mesh = &mut scene.mesh;
+    if mesh.uvs.is_empty() {
+        *mesh = planar_uvs(mesh);
+    }
+    if scene.is_box {
+        // The room is the box's first ten faces, in colours no block uses.
+        let room = super::cornell_box();
+        let colours: Vec<Vec3> = room.faces[..10]
+            .iter()
+            .map(|f| room.material(f).color)
+            .collect();
+        mesh.materials
+            .iter()
+            .map(|m| colours.contains(&m.color))
+            .collect()
+    } else {
+        vec![true; mesh.materials.len()]
+    }
+}
+
+/// Bumps across a surface, [`BUMPS`] to a side: a tangent-space normal map of
+/// round domes, each normal `(-dh/du, -dh/dv, 1)` normalised and stored as
+/// `(n + 1) / 2`.
+pub fn bumps() -> Texture {
+    let size = 16 * BUMPS;
+    let cell = size as f32 / BUMPS as f32;
+    let texels = (0..size * size)
+        .map(|i| {
+            // Column and row from the top; v points up, so dh/dv is -dh/drow.
+            let (x, y) = ((i % size) as f32 + 0.5, (i / size) as f32 + 0.5);
+            let (dx, dy) = (x % cell / cell - 0.5, y % cell / cell - 0.5);
+            let r2 = dx * dx + dy * dy;
+            // A dome h = sqrt(R² - r²) of radius R = 0.4 cell, flattened by half.
+            let (dh_du, dh_dv) = if r2 < 0.16 {
+                let h = (0.16 - r2).sqrt();
+                (-0.5 * dx / h, 0.5 * dy / h)
+            } else {
+                (0.0, 0.0)
+            };
+            let n = Vec3::new(-dh_du, -dh_dv, 1.0).normalize();
+            (n + Vec3::ONE) / 2.0
+        })
+        .collect();
+    Texture::new(size, size, texels).expect("a non-empty square")
+}
+
+/// Bumps along each side of [`bumps`].
+pub const BUMPS: u32 = 8;
+
+/// What `--normal-map` names: `bumps` or an image file.
+pub fn parse_normal_map(spec: &str) -> Result<Texture, String> {
+    match spec {
+        "bumps" => Ok(bumps()),
+        path => load_texture(Path::new(path)),
+    }
+}
+
+/// Gives `scene` the normal map `map`, on the surfaces a texture would go on.
+pub fn apply_normal_map(scene: &mut Scene, map: Texture) {
+    let mapped = surfaces_to_map(scene);
+    let mesh = &mut scene.mesh;
+    mesh.textures.push(map);
+    let index = mesh.textures.len() as u32 - 1;
+    for (material, mapped) in mesh.materials.iter_mut().zip(mapped) {
+        if mapped {
+            material.normal_map = Some(index);
+        }
+    }
 }
 
 /// The mesh with texture coordinates from its geometry: each face is projected
