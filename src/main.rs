@@ -10,7 +10,9 @@ use rasterlab::pipeline::draw::Cull;
 use rasterlab::pipeline::raster::Lines;
 use rasterlab::pipeline::shadow::Shadows;
 use rasterlab::pipeline::Filter;
-use rasterlab::scene::texture::{apply_normal_map, apply_texture, parse_normal_map, TextureSpec};
+use rasterlab::scene::texture::{
+    apply_normal_map, apply_parallax, apply_texture, parse_normal_map, TextureSpec,
+};
 use rasterlab::scene::{framed_pose, parse_scene, write_obj, Scene};
 use rasterlab::{Figure, StageName};
 use std::path::PathBuf;
@@ -154,6 +156,11 @@ struct SceneArgs {
     /// bumps (round domes) or an image PATH, on the surfaces --texture would cover.
     #[arg(long, value_name = "bumps|PATH")]
     normal_map: Option<String>,
+    /// Pixel-light with --normal-map bumps: parallax, the texture coordinates
+    /// moved along the view by the bumps' heights, so the bumps stand out of the
+    /// surface and hide what lies behind them.
+    #[arg(long)]
+    parallax: bool,
     /// Depth, vertex-light and pixel-light: depth of field, a blur that follows
     /// each pixel's circle of confusion, focused at depth FOCUS with a lens of
     /// radius APERTURE (world units).
@@ -183,6 +190,14 @@ impl SceneArgs {
         if let Some(spec) = &self.normal_map {
             let map = parse_normal_map(spec).map_err(Failure::Run)?;
             apply_normal_map(&mut scene, map);
+        }
+        if self.parallax {
+            if self.normal_map.as_deref() != Some("bumps") {
+                return Err(Failure::Usage(
+                    "--parallax needs --normal-map bumps: only the bumps come with heights".into(),
+                ));
+            }
+            apply_parallax(&mut scene);
         }
         let mut settings = Settings {
             width: self.size.0,
@@ -920,6 +935,11 @@ fn refuse_unused_options(command: &str, m: &ArgMatches) -> Result<(), String> {
     if given("normal_map") && !(pixel_light || traced_lit || command == "view") {
         return Err(format!(
             "--normal-map does nothing for {what}: only pixel-light, raytrace without --flat and the viewer tilt normals per pixel"
+        ));
+    }
+    if given("parallax") && !(pixel_light || command == "view") {
+        return Err(format!(
+            "--parallax does nothing for {what}: only pixel-light and the viewer move texture coordinates by height"
         ));
     }
     if given("shadows") && !(lit || command == "raytrace" || command == "view") {

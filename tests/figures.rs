@@ -212,6 +212,24 @@ fn committed_pictures_match_the_code() {
         &Default::default(),
     );
     assert_picture(&steps.join("normal-map-rays.png"), &traced.frame);
+    // rasterlab pixel-light --texture checker --normal-map bumps [--parallax]
+    //   --camera 0.3,0,-0.2 --yaw -30 --light 0,0,0.4 --light-power 2
+    let close = Settings {
+        camera: glam::Vec3::new(0.3, 0.0, -0.2),
+        yaw: -30.0,
+        light: glam::Vec3::new(0.0, 0.0, 0.4),
+        light_power: 2.0,
+        ..Settings::default()
+    };
+    for (name, parallax) in [("off", false), ("on", true)] {
+        let mut scene = textured.clone();
+        rasterlab::scene::texture::apply_normal_map(&mut scene, rasterlab::scene::texture::bumps());
+        if parallax {
+            rasterlab::scene::texture::apply_parallax(&mut scene);
+        }
+        let (frame, _) = app::render(Figure::of(pixel_light), &scene.mesh, &close, None);
+        assert_picture(&steps.join(format!("parallax-{name}.png")), &frame);
+    }
     // rasterlab depth --buffer
     let (depth, _) = app::render(
         Figure::of(rasterlab::StageName::Depth),

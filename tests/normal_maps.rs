@@ -86,3 +86,39 @@ fn normal_maps_are_refused_where_nothing_reads_them() {
     let e = String::from_utf8_lossy(&o.stderr);
     assert!(e.starts_with("error: texture /no/such.png: "), "{e}");
 }
+
+/// Parallax moves the texture coordinates by the bumps' heights along the view:
+/// on the domes the checker and the bumps' light shift, on the flat between them
+/// (height 0) nothing moves.
+#[test]
+fn parallax_moves_what_the_domes_show() {
+    use rasterlab::scene::texture::{apply_parallax, apply_texture, TextureSpec};
+    let s = Settings {
+        camera: Vec3::new(0.3, 0.0, -0.2),
+        yaw: -30.0,
+        light: Vec3::new(0.0, 0.0, 0.4),
+        light_power: 2.0,
+        ..Settings::default()
+    };
+    let draw = |parallax: bool| {
+        let mut scene = parse_scene("cornell").unwrap();
+        apply_texture(&mut scene, &TextureSpec::Checker).unwrap();
+        apply_normal_map(&mut scene, bumps());
+        if parallax {
+            apply_parallax(&mut scene);
+        }
+        app::render(Figure::of(StageName::PixelLight), &scene.mesh, &s, None).0
+    };
+    let (off, on) = (draw(false), draw(true));
+    let moved = off
+        .color
+        .iter()
+        .zip(&on.color)
+        .filter(|(a, b)| a != b)
+        .count();
+    assert!(moved > 5_000, "{moved} pixels moved");
+    assert!(
+        moved < 125_000,
+        "{moved} pixels moved: more than the domes cover"
+    );
+}

@@ -107,6 +107,7 @@ impl Settings {
     pub fn uniforms(&self) -> Uniforms<'static> {
         Uniforms {
             filter: self.filter,
+            eye: self.camera,
             ..Uniforms::lit(self.light())
         }
     }

@@ -19,6 +19,9 @@ pub struct Material {
     /// Index into [`Mesh::textures`]: a tangent-space normal map that tilts the
     /// surface's normal per pixel, where the mesh has texture coordinates.
     pub normal_map: Option<u32>,
+    /// Index into [`Mesh::textures`]: a height map (its red channel, 0 to 1) that
+    /// offsets the texture coordinates along the view for parallax.
+    pub height_map: Option<u32>,
 }
 
 impl Material {
@@ -28,6 +31,7 @@ impl Material {
             color,
             texture: None,
             normal_map: None,
+            height_map: None,
         }
     }
 }

@@ -35,6 +35,10 @@ pub enum Primitive {
     Polygons,
 }
 
+/// The height of a height map's white, in texture-coordinate units: 1 % of the
+/// texture's width.
+pub const PARALLAX_DEPTH: f32 = 0.01;
+
 /// Scene-wide inputs of the shaders, the same for every vertex and pixel of a frame.
 #[derive(Clone, Copy, Debug)]
 pub struct Uniforms<'a> {
@@ -45,6 +49,8 @@ pub struct Uniforms<'a> {
     pub filter: Filter,
     /// The light's shadow map, for the stages drawn with shadows.
     pub shadow: Option<&'a ShadowMap>,
+    /// The camera's position, for parallax's view direction.
+    pub eye: Vec3,
 }
 
 impl Uniforms<'static> {
@@ -55,6 +61,7 @@ impl Uniforms<'static> {
             textures: &[],
             filter: Filter::Nearest,
             shadow: None,
+            eye: Vec3::ZERO,
         }
     }
 }
@@ -70,6 +77,7 @@ impl<'a> Uniforms<'a> {
             textures: self.textures,
             filter: self.filter,
             shadow,
+            eye: self.eye,
         }
     }
     /// Eq. 11 at a surface point: with `SHADOWS` and a shadow map, the direct
@@ -81,6 +89,30 @@ impl<'a> Uniforms<'a> {
         match self.shadow {
             Some(map) if SHADOWS => map.reflected(&self.light, position, normal, rho),
             _ => self.light.reflected(position, normal, rho),
+        }
+    }
+
+    /// Parallax: the texture coordinate seen at `uv` once the surface is raised
+    /// by its material's height map, [`PARALLAX_DEPTH`] at most. The view
+    /// direction in the face's tangent frame `v` moves it by `v.xy / v.z` times
+    /// the height there (one step: steep views overshoot a little). `uv` itself
+    /// without a height map or a frame.
+    #[inline]
+    pub fn parallax(&self, surface: &Surface, normal: Vec3, world: Vec3, uv: Vec2) -> Vec2 {
+        let map = surface
+            .material
+            .height_map
+            .and_then(|i| self.textures.get(i as usize));
+        match map {
+            Some(map) if surface.tangent != Vec3::ZERO => {
+                let v = (self.eye - world).normalize_or_zero();
+                let along = Vec2::new(v.dot(surface.tangent), v.dot(surface.bitangent));
+                // Grazing views would send the offset to infinity: no closer than 0.2.
+                let up = v.dot(normal).max(0.2);
+                let height = map.sample(uv, self.filter).x * PARALLAX_DEPTH;
+                uv + along / up * height
+            }
+            _ => uv,
         }
     }
 
@@ -446,9 +478,10 @@ impl<const SHADOWS: bool> Stage for NormalMappedPixelLight<SHADOWS> {
     }
 
     fn pixel_shader(varying: &SmoothSurfaceUv, surface: &Surface, uniforms: &Uniforms) -> Vec3 {
-        let rho = uniforms.reflectance(&surface.material, varying.uv);
         let normal = varying.normal.normalize_or(surface.normal);
-        let normal = uniforms.mapped_normal(surface, normal, varying.uv);
+        let uv = uniforms.parallax(surface, normal, varying.world, varying.uv);
+        let rho = uniforms.reflectance(&surface.material, uv);
+        let normal = uniforms.mapped_normal(surface, normal, uv);
         uniforms.reflected::<SHADOWS>(varying.world, normal, rho)
     }
 }

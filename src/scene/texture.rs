@@ -130,6 +130,25 @@ fn surfaces_to_map(scene: &mut Scene) -> Vec<bool> {
 /// round domes, each normal `(-dh/du, -dh/dv, 1)` normalised and stored as
 /// `(n + 1) / 2`.
 pub fn bumps() -> Texture {
+    bump_texture(|_, dh_du, dh_dv| {
+        let n = Vec3::new(-dh_du, -dh_dv, 1.0).normalize();
+        (n + Vec3::ONE) / 2.0
+    })
+}
+
+/// The heights of [`bumps`]' domes, 0 on the flat and 1 at a dome's top, grey:
+/// the height map `--parallax` reads.
+pub fn bump_heights() -> Texture {
+    bump_texture(|h, _, _| Vec3::splat(h / DOME_TOP))
+}
+
+/// A dome's top, in cells: `0.5 sqrt(R²)` for R = 0.4.
+const DOME_TOP: f32 = 0.2;
+
+/// A texture of the bumps: each texel `texel(h, dh/du, dh/dv)` for the height h
+/// of the domes there (in cells), a dome `0.5 sqrt(R² - r²)` of radius R = 0.4
+/// cell around each cell's centre.
+fn bump_texture(texel: impl Fn(f32, f32, f32) -> Vec3) -> Texture {
     let size = 16 * BUMPS;
     let cell = size as f32 / BUMPS as f32;
     let texels = (0..size * size)
@@ -138,18 +157,29 @@ pub fn bumps() -> Texture {
             let (x, y) = ((i % size) as f32 + 0.5, (i / size) as f32 + 0.5);
             let (dx, dy) = (x % cell / cell - 0.5, y % cell / cell - 0.5);
             let r2 = dx * dx + dy * dy;
-            // A dome h = sqrt(R² - r²) of radius R = 0.4 cell, flattened by half.
-            let (dh_du, dh_dv) = if r2 < 0.16 {
+            if r2 < 0.16 {
                 let h = (0.16 - r2).sqrt();
-                (-0.5 * dx / h, 0.5 * dy / h)
+                texel(0.5 * h, -0.5 * dx / h, 0.5 * dy / h)
             } else {
-                (0.0, 0.0)
-            };
-            let n = Vec3::new(-dh_du, -dh_dv, 1.0).normalize();
-            (n + Vec3::ONE) / 2.0
+                texel(0.0, 0.0, 0.0)
+            }
         })
         .collect();
     Texture::new(size, size, texels).expect("a non-empty square")
+}
+
+/// Gives the surfaces with a normal map the bumps' heights, for parallax. The
+/// heights belong to the bumps: another map has none to give.
+pub fn apply_parallax(scene: &mut Scene) {
+    let mesh = &mut scene.mesh;
+    if !mesh.materials.iter().any(|m| m.normal_map.is_some()) {
+        return;
+    }
+    mesh.textures.push(bump_heights());
+    let index = mesh.textures.len() as u32 - 1;
+    for material in mesh.materials.iter_mut().filter(|m| m.normal_map.is_some()) {
+        material.height_map = Some(index);
+    }
 }
 
 /// Bumps along each side of [`bumps`].
