@@ -214,3 +214,16 @@ fn n_toggles_the_bumps() {
     assert!(args.join(" ").contains("--normal-map bumps"), "{args:?}");
     assert_renderer_agrees(&dir, &args, &shot);
 }
+
+#[test]
+#[ignore = "needs Xvfb; .ci/run runs it with --ignored"]
+fn k_puts_on_parallax_with_the_bumps() {
+    let dir = temp_dir("viewer-parallax");
+    let shot = dir.join("shot.png");
+    let keys = script("t,none,k", "4", &shot);
+    let args = view(&dir, &keys);
+    let joined = args.join(" ");
+    assert!(joined.contains("--normal-map bumps --parallax"), "{joined}");
+    assert!(joined.contains("--texture checker"), "{joined}");
+    assert_renderer_agrees(&dir, &args, &shot);
+}

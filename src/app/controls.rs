@@ -53,6 +53,8 @@ pub enum Action {
     ToggleTexture,
     /// The normal map on or off (n): `--normal-map`'s, a model's own, or bumps.
     ToggleNormalMap,
+    /// Parallax on or off (k), with the bumps.
+    ToggleParallax,
     /// Nearest or bilinear texture filtering (b).
     ToggleFilter,
     /// Depth of field on or off (g).
@@ -76,7 +78,7 @@ keys: up/down move the camera forward/back, left/right turn it (yaw),
       7 pixel-light --affine; p toggles perspective-correct interpolation;
       x switches between the rows rasterizer and the exact edge rasterizer;
       t toggles textures (the checker, or the model's own), n the normal map
-      (bumps, or --normal-map's), b bilinear filtering,
+      (bumps, or --normal-map's), k parallax (with the bumps), b bilinear filtering,
       g depth of field (--dof's, or focused on what the centre pixel shows),
       m shadows: none, --shadows, --shadows --pcf;
       c saves the frame as a PNG; h prints this list; Esc quits.";
@@ -200,6 +202,7 @@ pub fn action(key: Key) -> Option<Action> {
         Key::Char('t') => Some(Action::ToggleTexture),
         Key::Char('b') => Some(Action::ToggleFilter),
         Key::Char('n') => Some(Action::ToggleNormalMap),
+        Key::Char('k') => Some(Action::ToggleParallax),
         Key::Char('g') => Some(Action::ToggleDepthOfField),
         Key::Char('m') => Some(Action::CycleShadows),
         Key::Char('c') => Some(Action::Save),

@@ -11,7 +11,7 @@ use crate::measure::figure::{Figure, Raster, StageName};
 use crate::pipeline::dof::DepthOfField;
 use crate::pipeline::shadow::Shadows;
 use crate::pipeline::{Filter, Frame, Mesh};
-use crate::scene::texture::{apply_normal_map, apply_texture, bumps, TextureSpec};
+use crate::scene::texture::{apply_normal_map, apply_parallax, apply_texture, bumps, TextureSpec};
 use std::collections::VecDeque;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -59,6 +59,8 @@ pub struct Summary {
     pub texture: Option<String>,
     /// The same for the normal map.
     pub normal_map: Option<String>,
+    /// Whether the last frame had parallax.
+    pub parallax: bool,
 }
 
 impl Summary {
@@ -77,6 +79,9 @@ impl Summary {
         }
         if let (Some(map), StageName::PixelLight) = (&self.normal_map, self.view.stage) {
             command += &format!(" --normal-map {map}");
+            if self.parallax {
+                command += " --parallax";
+            }
         }
         if self.settings.filter == crate::pipeline::Filter::Bilinear && lit {
             command += " --filter bilinear";
@@ -105,7 +110,13 @@ fn autofocus(frame: &Frame) -> DepthOfField {
 /// The mesh the viewer draws: `given` with its textures and its normal map each
 /// toggled when asked (`t`, `n`): taken off if it had them, else the checker or
 /// the bumps put on (on the room for the box, which `spec` names).
-fn toggled_mesh(given: &Mesh, spec: &str, texture: bool, normal_map: bool) -> Result<Mesh, String> {
+fn toggled_mesh(
+    given: &Mesh,
+    spec: &str,
+    texture: bool,
+    normal_map: bool,
+    parallax: bool,
+) -> Result<Mesh, String> {
     let mut scene = crate::scene::Scene {
         name: spec.to_string(),
         mesh: given.clone(),
@@ -132,6 +143,15 @@ fn toggled_mesh(given: &Mesh, spec: &str, texture: bool, normal_map: bool) -> Re
         } else {
             apply_normal_map(&mut scene, bumps());
         }
+    }
+    // Parallax reads the bumps' heights: on when asked and the bumps are there.
+    scene
+        .mesh
+        .materials
+        .iter_mut()
+        .for_each(|m| m.height_map = None);
+    if parallax {
+        apply_parallax(&mut scene);
     }
     Ok(scene.mesh)
 }
@@ -281,6 +301,7 @@ pub fn run(options: Options) -> Result<Summary, String> {
     let had_texture = given.materials.iter().any(|m| m.texture.is_some());
     let had_normal_map = given.materials.iter().any(|m| m.normal_map.is_some());
     let (mut textured, mut bumped) = (had_texture, had_normal_map);
+    let mut parallax = given.materials.iter().any(|m| m.height_map.is_some());
     // `g` switches between none and this: --dof's, or set at the first `g`.
     let mut dof = options.settings.dof;
     // Kept apart from the view, which drops them on stages without light.
@@ -343,17 +364,27 @@ pub fn run(options: Options) -> Result<Summary, String> {
                     view = controls::toggle_raster(view);
                     pipeline = Parallel::new(view, &scene, threads)?;
                 }
-                Some(action @ (Action::ToggleTexture | Action::ToggleNormalMap)) => {
-                    if action == Action::ToggleTexture {
-                        textured = !textured;
-                    } else {
-                        bumped = !bumped;
+                Some(
+                    action @ (Action::ToggleTexture
+                    | Action::ToggleNormalMap
+                    | Action::ToggleParallax),
+                ) => {
+                    match action {
+                        Action::ToggleTexture => textured = !textured,
+                        Action::ToggleNormalMap => bumped = !bumped,
+                        _ => {
+                            // Parallax needs the bumps: k puts them on too.
+                            parallax = !parallax;
+                            bumped |= parallax;
+                        }
                     }
+                    parallax &= bumped;
                     scene = toggled_mesh(
                         &given,
                         &options.scene,
                         textured != had_texture,
                         bumped != had_normal_map,
+                        parallax,
                     )?;
                     pipeline = Parallel::new(view, &scene, threads)?;
                 }
@@ -443,6 +474,7 @@ pub fn run(options: Options) -> Result<Summary, String> {
             (true, false) => Some("bumps".into()),
             (false, _) => None,
         },
+        parallax,
     })
 }
 
