@@ -92,8 +92,18 @@ fn quick_report_writes_its_three_files() {
     );
     let csv = std::fs::read_to_string(dir.join("report.csv")).unwrap();
     let lines: Vec<&str> = csv.lines().collect();
-    // One size x (ray tracer, with shadows, 8 figures) + k = 2 x 8 figures.
-    assert_eq!(lines.len(), 1 + 10 + 8, "{csv}");
+    // One size x (ray tracer, with shadows, 8 figures) + k = 2 x 8 figures, and
+    // the six options beyond the handout.
+    assert_eq!(lines.len(), 1 + 10 + 8 + 6, "{csv}");
+    assert!(md.contains("## Options beyond the handout (250x250, pixel-light)"));
+    // The shadow map's row is measured against shadow rays: an interior RMSE
+    // under 2 levels (0.51 measured at 250x250).
+    let shadows = md
+        .lines()
+        .find(|l| l.starts_with("| pixel-light --shadows | 250 | 1 |"))
+        .unwrap_or_else(|| panic!("no shadow row: {md}"));
+    let rmse: f64 = shadows.split('|').nth(11).unwrap().trim().parse().unwrap();
+    assert!(rmse < 2.0, "{shadows}");
     let columns = lines[0].split(',').count();
     assert!(
         lines.iter().all(|l| l.split(',').count() == columns),

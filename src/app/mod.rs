@@ -431,7 +431,7 @@ pub fn report(
     quick: bool,
     scene: &Scene,
     pose: &crate::scene::Pose,
-    progress: impl FnMut(&str),
+    mut progress: impl FnMut(&str),
 ) -> Result<Vec<PathBuf>, WriteError> {
     let plan = if quick {
         report::Plan::quick()
@@ -447,14 +447,17 @@ pub fn report(
     let probe = dir.join(format!(".rasterlab-write-check.{}", std::process::id()));
     std::fs::write(&probe, b"").map_err(fail)?;
     let _ = std::fs::remove_file(&probe);
-    let rows = report::measure_all(&plan, scene, pose, progress);
+    let rows = report::measure_all(&plan, scene, pose, &mut progress);
+    let size = report::conclusion_size(&plan);
+    let options = report::measure_options(scene, pose, size, plan.runs, &mut progress);
     let md = dir.join("report.md");
     let csv = dir.join("report.csv");
     let png = dir.join("error-vs-time.png");
     let mut text = report::markdown(&rows, &plan, &machine(), &scene.name);
+    text.push_str(&report::options_markdown(&options));
     text.push_str("\n![Error against time](error-vs-time.png)\n");
     write_text(&md, &text)?;
-    write_text(&csv, &report::csv(&rows))?;
+    write_text(&csv, &report::csv(&[rows.as_slice(), &options].concat()))?;
     write_png(&report::plot(&rows, &plan), &png)?;
     let mut written = vec![md, csv, png];
     for (name, picture) in report::heat_maps(&plan, scene, pose) {

@@ -11,6 +11,8 @@ use crate::measure::metrics::{
 use crate::measure::plot::{Canvas, LogLog, BLACK, DARK};
 use crate::measure::raytrace::{raytrace, Options, Shading, Traced};
 use crate::measure::timing::{time_runs, Timing};
+use crate::pipeline::dof::DepthOfField;
+use crate::pipeline::shadow::{ShadowMap, Shadows, SHADOW_MAP_SIZE};
 use crate::pipeline::{Camera, Frame, Light, Mesh, Uniforms};
 use crate::scene::{framed_pose, subdivide, Pose, Scene};
 use std::fmt::Write as _;
@@ -464,7 +466,7 @@ pub fn markdown(rows: &[Row], plan: &Plan, machine: &str, scene: &str) -> String
 
 /// The size the conclusions and heat maps are given at: 500 when measured, else
 /// the largest size.
-fn conclusion_size(plan: &Plan) -> u32 {
+pub fn conclusion_size(plan: &Plan) -> u32 {
     if plan.sizes.contains(&500) {
         500
     } else {
@@ -785,3 +787,172 @@ pub fn plot(rows: &[Row], plan: &Plan) -> Frame {
     }
     c.frame
 }
+
+/// One option beyond the handout, as the report measures it.
+struct OptionCase {
+    label: &'static str,
+    mesh: Mesh,
+    figure: Figure,
+    dof: Option<DepthOfField>,
+    /// The ray tracer's counterpart: the same mesh with shadow rays or not;
+    /// `None` where it has none (depth of field, parallax).
+    reference: Option<bool>,
+}
+
+/// Each option beyond the handout on pixel-light at `size` (`steps/9-textures.md`
+/// to `12-normal-maps.md`): its draw time, shadow map and post-process included,
+/// and its error against the ray tracer given the same option where it has one.
+pub fn measure_options(
+    scene: &Scene,
+    pose: &Pose,
+    size: u32,
+    runs: usize,
+    mut progress: impl FnMut(&str),
+) -> Vec<Row> {
+    use crate::scene::texture::{apply_normal_map, apply_parallax, apply_texture, bumps};
+    let (camera, light) = (camera_for(size, pose), light_for(pose));
+    let pixel_light = Figure::of(StageName::PixelLight);
+    let with = |f: &dyn Fn(&mut Scene)| {
+        let mut s = scene.clone();
+        f(&mut s);
+        s.mesh
+    };
+    let textured = with(&|s| {
+        let _ = apply_texture(s, &crate::scene::texture::TextureSpec::Checker);
+    });
+    let bumped = with(&|s| apply_normal_map(s, bumps()));
+    let parallax = with(&|s| {
+        let _ = apply_texture(s, &crate::scene::texture::TextureSpec::Checker);
+        apply_normal_map(s, bumps());
+        apply_parallax(s);
+    });
+    // In focus at the middle of the scene's bounding sphere, a lens a fiftieth
+    // of that depth wide.
+    let focus = (crate::scene::bounding_sphere(&scene.mesh).0 - camera.position).length();
+    let cases = [
+        OptionCase {
+            label: "pixel-light --texture checker",
+            mesh: textured,
+            figure: pixel_light,
+            dof: None,
+            reference: Some(false),
+        },
+        OptionCase {
+            label: "pixel-light --normal-map bumps",
+            mesh: bumped,
+            figure: pixel_light,
+            dof: None,
+            reference: Some(false),
+        },
+        OptionCase {
+            label: "pixel-light --texture checker --normal-map bumps --parallax",
+            mesh: parallax,
+            figure: pixel_light,
+            dof: None,
+            reference: None,
+        },
+        OptionCase {
+            label: "pixel-light --shadows",
+            mesh: scene.mesh.clone(),
+            figure: pixel_light.with_shadows(Shadows::Hard),
+            dof: None,
+            reference: Some(true),
+        },
+        OptionCase {
+            label: "pixel-light --shadows --pcf",
+            mesh: scene.mesh.clone(),
+            figure: pixel_light.with_shadows(Shadows::Pcf),
+            dof: None,
+            reference: Some(true),
+        },
+        OptionCase {
+            label: "pixel-light --dof (focus on the scene's centre)",
+            mesh: scene.mesh.clone(),
+            figure: pixel_light,
+            dof: Some(DepthOfField {
+                focus,
+                aperture: focus / 50.0,
+            }),
+            reference: None,
+        },
+    ];
+    let plain = raytrace(&scene.mesh, &camera, &light, &Options::default());
+    let mask = interior_mask(&scene.mesh, &plain.hit, size, size, INTERIOR_MARGIN);
+    let rt_timing = time_runs(runs, || {
+        raytrace(&scene.mesh, &camera, &light, &Options::default());
+    });
+    let rt_ms = rt_timing.median.as_secs_f64() * 1e3;
+    let near = camera.near.unwrap_or(crate::pipeline::camera::DEFAULT_NEAR);
+    let mut rows = Vec::new();
+    for case in cases {
+        let mesh = &case.mesh;
+        let mut pipeline = case.figure.pipeline_for(mesh);
+        let mut frame = Frame::default();
+        let mut draw = |frame: &mut Frame| {
+            let shadow = (case.figure.shadows != Shadows::None).then(|| {
+                ShadowMap::render(mesh, &light, SHADOW_MAP_SIZE, near, case.figure.shadows)
+            });
+            let uniforms = Uniforms {
+                textures: &mesh.textures,
+                eye: camera.position,
+                ..Uniforms::lit(light)
+            };
+            pipeline.render(mesh, &camera, &uniforms.with_shadow(shadow.as_ref()), frame);
+            if let Some(dof) = case.dof {
+                *frame = dof.apply(frame, camera.focal);
+            }
+        };
+        draw(&mut frame); // warm-up
+        let timing = time_runs(runs, || draw(&mut frame));
+        let metric = match case.reference {
+            Some(shadows) => {
+                let options = Options {
+                    shadows,
+                    ..Options::default()
+                };
+                let reference = raytrace(mesh, &camera, &light, &options).frame;
+                Metric::Light {
+                    all: image_error(&frame, &reference, None),
+                    interior: image_error(&frame, &reference, Some(&mask)),
+                }
+            }
+            None => Metric::None,
+        };
+        let row = Row {
+            stage: case.label.to_string(),
+            size,
+            k: 1,
+            triangles: mesh.faces.len(),
+            timing,
+            speedup: rt_ms / (timing.median.as_secs_f64() * 1e3),
+            metric,
+        };
+        progress(&format!(
+            "{} {size}x{size}: median {:.2} ms",
+            row.stage,
+            row.ms()
+        ));
+        rows.push(row);
+    }
+    rows
+}
+
+/// The options' rows as a section of report.md.
+pub fn options_markdown(rows: &[Row]) -> String {
+    let Some(size) = rows.first().map(|r| r.size) else {
+        return String::new();
+    };
+    let mut out = format!(
+        "\n## Options beyond the handout ({size}x{size}, pixel-light)\n\n\
+         Each against the ray tracer given the same texture, normal map or shadow \
+         rays (the shadow map's error is against shadow rays); parallax and depth of \
+         field have no ray-traced counterpart here, so only their time is given. \
+         Times include the shadow map and the post-process.\n\n{OPTIONS_HEADER}\n"
+    );
+    for r in rows {
+        row_line(&mut out, r);
+    }
+    out
+}
+
+const OPTIONS_HEADER: &str = "| stage | size | k | triangles | median ms | x faster than ray tracer | within 1 px | pixels differing (all) | (interior) | RMSE / max / PSNR dB (all) | RMSE (interior) | max (interior) | PSNR dB (interior) |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|";
