@@ -111,8 +111,9 @@ impl ShadowMap {
         }
     }
 
-    /// How much of the light reaches `position` on a surface of `normal`: 1 lit,
-    /// 0 in shadow, between with percentage-closer filtering.
+    /// How much of the light reaches `position` on a surface of (geometric)
+    /// `normal`: 1 lit, 0 in shadow, between with percentage-closer filtering.
+    /// Eq. 11 then becomes `ρ (v D + N)` ([`super::stage::Uniforms::reflected`]).
     pub fn visibility(&self, position: Vec3, normal: Vec3) -> f32 {
         let to_point = position - self.light;
         let (camera, frame) = &self.faces[face_of(to_point)];
@@ -154,14 +155,6 @@ impl ShadowMap {
                 sum / 9.0
             }
         }
-    }
-
-    /// Eq. 11 with the direct light D of eq. 10 scaled by the point's visibility:
-    /// `ρ (v D + N)`.
-    #[inline]
-    pub fn reflected(&self, light: &Light, position: Vec3, normal: Vec3, rho: Vec3) -> Vec3 {
-        let v = self.visibility(position, normal);
-        rho * (light.direct(position, normal) * v + light.indirect)
     }
 }
 

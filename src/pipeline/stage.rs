@@ -84,10 +84,21 @@ impl<'a> Uniforms<'a> {
     /// light scaled by how much of it the map lets through; else the handout's.
     /// `SHADOWS` is the stage's, fixed at compile time, so a stage without
     /// shadows has no test here at all.
+    /// The shadow map's depth bias follows `surface`'s own (face) normal: a
+    /// smooth or mapped `normal` is not the slope the map was drawn with.
     #[inline]
-    pub fn reflected<const SHADOWS: bool>(&self, position: Vec3, normal: Vec3, rho: Vec3) -> Vec3 {
+    pub fn reflected<const SHADOWS: bool>(
+        &self,
+        surface: &Surface,
+        position: Vec3,
+        normal: Vec3,
+        rho: Vec3,
+    ) -> Vec3 {
         match self.shadow {
-            Some(map) if SHADOWS => map.reflected(&self.light, position, normal, rho),
+            Some(map) if SHADOWS => {
+                let v = map.visibility(position, surface.normal);
+                rho * (self.light.direct(position, normal) * v + self.light.indirect)
+            }
             _ => self.light.reflected(position, normal, rho),
         }
     }
@@ -276,7 +287,7 @@ impl<const SHADOWS: bool> Stage for VertexLight<SHADOWS> {
     fn vertex_shader(vertex: &Vertex, surface: &Surface, uniforms: &Uniforms) -> Illumination {
         let rho = surface.material.color;
         Illumination {
-            light: uniforms.reflected::<SHADOWS>(vertex.position, vertex.normal, rho),
+            light: uniforms.reflected::<SHADOWS>(surface, vertex.position, vertex.normal, rho),
         }
     }
 
@@ -313,7 +324,7 @@ impl<const SHADOWS: bool> Stage for PixelLight<SHADOWS> {
     #[inline]
     fn pixel_shader(varying: &Position, surface: &Surface, uniforms: &Uniforms) -> Vec3 {
         let rho = surface.material.color;
-        uniforms.reflected::<SHADOWS>(varying.world, surface.normal, rho)
+        uniforms.reflected::<SHADOWS>(surface, varying.world, surface.normal, rho)
     }
 }
 
@@ -349,7 +360,7 @@ impl<const SHADOWS: bool> Stage for SmoothPixelLight<SHADOWS> {
     fn pixel_shader(varying: &SmoothSurface, surface: &Surface, uniforms: &Uniforms) -> Vec3 {
         let rho = surface.material.color;
         let normal = varying.normal.normalize_or_zero();
-        uniforms.reflected::<SHADOWS>(varying.world, normal, rho)
+        uniforms.reflected::<SHADOWS>(surface, varying.world, normal, rho)
     }
 }
 
@@ -374,9 +385,14 @@ impl<const SHADOWS: bool> Stage for TexturedVertexLight<SHADOWS> {
     const PRIMITIVE: Primitive = Primitive::Polygons;
     const DEPTH_TEST: bool = true;
 
-    fn vertex_shader(vertex: &Vertex, _: &Surface, uniforms: &Uniforms) -> IlluminationUv {
+    fn vertex_shader(vertex: &Vertex, surface: &Surface, uniforms: &Uniforms) -> IlluminationUv {
         IlluminationUv {
-            light: uniforms.reflected::<SHADOWS>(vertex.position, vertex.normal, Vec3::ONE),
+            light: uniforms.reflected::<SHADOWS>(
+                surface,
+                vertex.position,
+                vertex.normal,
+                Vec3::ONE,
+            ),
             uv: vertex.uv,
         }
     }
@@ -415,7 +431,7 @@ impl<const SHADOWS: bool> Stage for TexturedPixelLight<SHADOWS> {
 
     fn pixel_shader(varying: &PositionUv, surface: &Surface, uniforms: &Uniforms) -> Vec3 {
         let rho = uniforms.reflectance(&surface.material, varying.uv);
-        uniforms.reflected::<SHADOWS>(varying.world, surface.normal, rho)
+        uniforms.reflected::<SHADOWS>(surface, varying.world, surface.normal, rho)
     }
 }
 
@@ -456,7 +472,7 @@ impl<const SHADOWS: bool> Stage for SmoothTexturedPixelLight<SHADOWS> {
     fn pixel_shader(varying: &SmoothSurfaceUv, surface: &Surface, uniforms: &Uniforms) -> Vec3 {
         let rho = uniforms.reflectance(&surface.material, varying.uv);
         let normal = varying.normal.normalize_or_zero();
-        uniforms.reflected::<SHADOWS>(varying.world, normal, rho)
+        uniforms.reflected::<SHADOWS>(surface, varying.world, normal, rho)
     }
 }
 
@@ -482,6 +498,6 @@ impl<const SHADOWS: bool> Stage for NormalMappedPixelLight<SHADOWS> {
         let uv = uniforms.parallax(surface, normal, varying.world, varying.uv);
         let rho = uniforms.reflectance(&surface.material, uv);
         let normal = uniforms.mapped_normal(surface, normal, uv);
-        uniforms.reflected::<SHADOWS>(varying.world, normal, rho)
+        uniforms.reflected::<SHADOWS>(surface, varying.world, normal, rho)
     }
 }
