@@ -146,8 +146,8 @@ struct SceneArgs {
     threads: Option<u64>,
     /// Lit stages only: read each surface's reflectance from a texture: checker
     /// (a checker of each wall's colour; the box's blocks stay plain) or an image
-    /// PATH. A model's own MTL map_Kd is used without this.
-    #[arg(long, value_name = "checker|PATH")]
+    /// PATH. A model's own MTL map_Kd is used without this; none leaves it out.
+    #[arg(long, value_name = "checker|none|PATH")]
     texture: Option<String>,
     /// How textures are read between texels.
     #[arg(long, value_enum, default_value = "nearest")]

@@ -166,6 +166,15 @@ fn a_models_map_kd_is_its_texture() {
     assert_eq!(rgb(at(350, 150)), [0, 255, 0], "top right: green");
     assert_eq!(rgb(at(150, 350)), [0, 0, 255], "bottom left: blue");
     assert_eq!(rgb(at(350, 350)), [255, 255, 255], "bottom right: white");
+    // --texture none leaves the model's own texture out: Kd's grey.
+    let mut scene = rasterlab::scene::Scene {
+        name: "square".into(),
+        mesh,
+        is_box: false,
+    };
+    apply_texture(&mut scene, &TextureSpec::parse("none")).unwrap();
+    let frame = render(Figure::of(StageName::PixelLight), &scene.mesh, &s);
+    assert_eq!(rgb(frame.color[150 * 500 + 150]), [128, 128, 128]);
     // Without map_Kd, the same square is Kd's grey.
     std::fs::remove_file(dir.join("square.obj")).unwrap();
     let plain = load_obj(&write_textured_square(&dir, None)).unwrap();

@@ -467,7 +467,9 @@ pub fn run(options: Options) -> Result<Summary, String> {
         texture: match (textured, had_texture) {
             (true, true) => options.texture,
             (true, false) => Some("checker".into()),
-            (false, _) => None,
+            // A model's own map_Kd toggled off.
+            (false, true) => Some("none".into()),
+            (false, false) => None,
         },
         normal_map: match (bumped, had_normal_map) {
             (true, true) => options.normal_map,

@@ -21,12 +21,15 @@ pub enum TextureSpec {
     Checker,
     /// An image file, the same for every textured material.
     Image(std::path::PathBuf),
+    /// No textures, not even a model's own `map_Kd`: each face's `Kd`.
+    None,
 }
 
 impl TextureSpec {
     pub fn parse(spec: &str) -> TextureSpec {
         match spec {
             "checker" => TextureSpec::Checker,
+            "none" => TextureSpec::None,
             path => TextureSpec::Image(path.into()),
         }
     }
@@ -76,6 +79,14 @@ pub fn apply_texture(scene: &mut Scene, spec: &TextureSpec) -> Result<(), String
     let image = match spec {
         TextureSpec::Checker => None,
         TextureSpec::Image(path) => Some(load_texture(path)?),
+        TextureSpec::None => {
+            scene
+                .mesh
+                .materials
+                .iter_mut()
+                .for_each(|m| m.texture = None);
+            return Ok(());
+        }
     };
     let textured = surfaces_to_map(scene);
     let mesh = &mut scene.mesh;
@@ -286,6 +297,14 @@ mod tests {
             .uvs
             .iter()
             .all(|uv| (0.0..=1.0).contains(&uv.x) && (0.0..=1.0).contains(&uv.y)));
+    }
+
+    #[test]
+    fn none_takes_every_texture_off() {
+        let mut scene = parse_scene("cornell").unwrap();
+        apply_texture(&mut scene, &TextureSpec::Checker).unwrap();
+        apply_texture(&mut scene, &TextureSpec::parse("none")).unwrap();
+        assert!(scene.mesh.materials.iter().all(|m| m.texture.is_none()));
     }
 
     #[test]
