@@ -67,10 +67,8 @@ fn no_shadows_is_the_handouts_figure() {
     )
     .0;
     assert_eq!(pixel_light(Shadows::None, Raster::Rows), handout);
-    assert!(rasterlab::app::shadow_map(
-        Figure::of(StageName::PixelLight),
-        &cornell_box(),
-        &Settings::default()
-    )
-    .is_none());
+    let s = Settings::default();
+    assert!(Figure::of(StageName::PixelLight)
+        .shadow_map(&cornell_box(), &s.light(), s.near)
+        .is_none());
 }

@@ -21,7 +21,6 @@ use crate::pipeline::draw::Stats;
 use crate::pipeline::interpolate::Pixel;
 use crate::pipeline::raster::rows::{compute_polygon_rows, Rows};
 use crate::pipeline::raster::Bounds;
-use crate::pipeline::shadow::{ShadowMap, Shadows, SHADOW_MAP_SIZE};
 use crate::pipeline::{Camera, Filter, Frame, Light, Mesh, Uniforms};
 use crate::scene::Scene;
 use glam::Vec3;
@@ -140,57 +139,37 @@ pub fn render_with_stats(
     settings: &Settings,
     runs: Option<usize>,
 ) -> (Frame, Option<Timing>, Stats) {
-    let camera = settings.camera();
-    // The shadow map is part of what a frame with shadows costs: drawn again for
-    // each timed frame, as the viewer does when the light moves.
-    let mut shadow = shadow_map(figure, mesh, settings);
     // No threads to be had: one band, on this thread.
     let mut pipeline = parallel::Parallel::new(figure, mesh, settings.threads)
         .or_else(|_| parallel::Parallel::new(figure, mesh, 1))
         .expect("one band needs no thread");
     let mut frame = Frame::default();
-    // Depth of field, when asked for, belongs to the frame and to its time.
-    let post = |frame: &mut Frame| {
-        if let Some(dof) = settings.dof {
-            *frame = dof.apply(frame, settings.focal);
-        }
-    };
-    let uniforms = settings.uniforms_for(mesh);
-    pipeline.render(
-        mesh,
-        &camera,
-        &uniforms.with_shadow(shadow.as_ref()),
-        &mut frame,
-    );
-    post(&mut frame);
+    draw_frame(&mut pipeline, figure, mesh, settings, &mut frame);
     let stats = pipeline.stats();
     let timing = runs.map(|n| {
         time_runs(n, || {
-            shadow = shadow_map(figure, mesh, settings);
-            pipeline.render(
-                mesh,
-                &camera,
-                &uniforms.with_shadow(shadow.as_ref()),
-                &mut frame,
-            );
-            post(&mut frame);
+            draw_frame(&mut pipeline, figure, mesh, settings, &mut frame)
         })
     });
     (frame, timing, stats)
 }
 
-/// The light's shadow map when `figure` draws shadows; none otherwise, so a frame
-/// without shadows draws no map. Its near plane is the camera's.
-pub fn shadow_map(figure: Figure, mesh: &Mesh, settings: &Settings) -> Option<ShadowMap> {
-    (figure.shadows != Shadows::None).then(|| {
-        ShadowMap::render(
-            mesh,
-            &settings.light(),
-            SHADOW_MAP_SIZE,
-            settings.near,
-            figure.shadows,
-        )
-    })
+/// One frame of `figure` with everything it asks for: its shadow map (drawn
+/// for each frame, since the light may move, and part of what the frame costs),
+/// the pipeline, then depth of field on the finished frame.
+pub fn draw_frame(
+    pipeline: &mut parallel::Parallel,
+    figure: Figure,
+    mesh: &Mesh,
+    settings: &Settings,
+    frame: &mut Frame,
+) {
+    let shadow = figure.shadow_map(mesh, &settings.light(), settings.near);
+    let uniforms = settings.uniforms_for(mesh).with_shadow(shadow.as_ref());
+    pipeline.render(mesh, &settings.camera(), &uniforms, frame);
+    if let Some(dof) = settings.dof {
+        dof.apply(frame, settings.focal);
+    }
 }
 
 /// `--stats`: the frame's counts, one per line, and what was left out and why.

@@ -123,15 +123,13 @@ fn toggled_mesh(
         is_box: spec == "cornell" || spec.starts_with("cornell:"),
     };
     if texture {
-        if given.materials.iter().any(|m| m.texture.is_some()) {
-            scene
-                .mesh
-                .materials
-                .iter_mut()
-                .for_each(|m| m.texture = None);
+        let had = given.materials.iter().any(|m| m.texture.is_some());
+        let spec = if had {
+            TextureSpec::None
         } else {
-            apply_texture(&mut scene, &TextureSpec::Checker)?;
-        }
+            TextureSpec::Checker
+        };
+        apply_texture(&mut scene, &spec)?;
     }
     if normal_map {
         if given.materials.iter().any(|m| m.normal_map.is_some()) {
@@ -431,17 +429,7 @@ pub fn run(options: Options) -> Result<Summary, String> {
         }
 
         let draw_start = Instant::now();
-        // The light may have moved: the shadow map is drawn for each frame.
-        let shadow = super::shadow_map(view, &scene, &settings);
-        pipeline.render(
-            &scene,
-            &settings.camera(),
-            &settings.uniforms_for(&scene).with_shadow(shadow.as_ref()),
-            &mut frame,
-        );
-        if let Some(d) = settings.dof {
-            frame = d.apply(&frame, settings.focal);
-        }
+        super::draw_frame(&mut pipeline, view, &scene, &settings, &mut frame);
         let draw = draw_start.elapsed();
         all_draws.push(draw);
         window

@@ -3,14 +3,14 @@
 
 use crate::pipeline::draw::Cull;
 use crate::pipeline::raster::{EdgeRaster, Lines, Rasterizer, RowRaster};
-use crate::pipeline::shadow::Shadows;
+use crate::pipeline::shadow::{ShadowMap, Shadows, SHADOW_MAP_SIZE};
 use crate::pipeline::stage::{
     NormalMappedPixelLight, SmoothPixelLight, SmoothTexturedPixelLight, TexturedPixelLight,
     TexturedVertexLight,
 };
 use crate::pipeline::{
-    Affine, Camera, Depth, Filled, Frame, Interpolation, Mesh, Perspective, Pipeline, PixelLight,
-    Points, Render, Stage, Uniforms, VertexLight, Wireframe,
+    Affine, Camera, Depth, Filled, Frame, Interpolation, Light, Mesh, Perspective, Pipeline,
+    PixelLight, Points, Render, Stage, Uniforms, VertexLight, Wireframe,
 };
 
 /// The stages, as the command line and the viewer name them, in the handout's order.
@@ -124,11 +124,27 @@ impl Attributes {
 /// The stage type for `stage` and a mesh with `attributes`, chosen here once,
 /// never per pixel: light per pixel on a mesh with vertex normals is
 /// [`SmoothPixelLight`]; a textured mesh's lit stages interpolate texture
-/// coordinates, and only then.
+/// coordinates, and only then; `shadows` picks the lit stages' `SHADOWS`.
 fn with_types<I: Interpolation, R: Rasterizer, W: WithStage>(
     stage: StageName,
     attributes: Attributes,
     shadows: bool,
+    w: W,
+) -> W::Output {
+    match stage {
+        StageName::Points => w.with::<Points, I, R>(),
+        StageName::Wireframe => w.with::<Wireframe, I, R>(),
+        StageName::Filled => w.with::<Filled, I, R>(),
+        StageName::Depth => w.with::<Depth, I, R>(),
+        _ if shadows => with_lit_types::<I, R, W, true>(stage, attributes, w),
+        _ => with_lit_types::<I, R, W, false>(stage, attributes, w),
+    }
+}
+
+/// [`with_types`] for vertex-light and pixel-light, with or without shadows.
+fn with_lit_types<I: Interpolation, R: Rasterizer, W: WithStage, const SHADOWS: bool>(
+    stage: StageName,
+    attributes: Attributes,
     w: W,
 ) -> W::Output {
     let Attributes {
@@ -136,32 +152,16 @@ fn with_types<I: Interpolation, R: Rasterizer, W: WithStage>(
         texture,
         normal_map,
     } = attributes;
-    if shadows {
-        return match stage {
-            StageName::PixelLight if normal_map => w.with::<NormalMappedPixelLight<true>, I, R>(),
-            StageName::VertexLight if texture => w.with::<TexturedVertexLight<true>, I, R>(),
-            StageName::VertexLight => w.with::<VertexLight<true>, I, R>(),
-            StageName::PixelLight if normals && texture => {
-                w.with::<SmoothTexturedPixelLight<true>, I, R>()
-            }
-            StageName::PixelLight if normals => w.with::<SmoothPixelLight<true>, I, R>(),
-            StageName::PixelLight if texture => w.with::<TexturedPixelLight<true>, I, R>(),
-            StageName::PixelLight => w.with::<PixelLight<true>, I, R>(),
-            _ => with_types::<I, R, W>(stage, attributes, false, w),
-        };
-    }
     match stage {
-        StageName::Points => w.with::<Points, I, R>(),
-        StageName::Wireframe => w.with::<Wireframe, I, R>(),
-        StageName::Filled => w.with::<Filled, I, R>(),
-        StageName::Depth => w.with::<Depth, I, R>(),
-        StageName::PixelLight if normal_map => w.with::<NormalMappedPixelLight, I, R>(),
-        StageName::VertexLight if texture => w.with::<TexturedVertexLight, I, R>(),
-        StageName::VertexLight => w.with::<VertexLight, I, R>(),
-        StageName::PixelLight if normals && texture => w.with::<SmoothTexturedPixelLight, I, R>(),
-        StageName::PixelLight if normals => w.with::<SmoothPixelLight, I, R>(),
-        StageName::PixelLight if texture => w.with::<TexturedPixelLight, I, R>(),
-        StageName::PixelLight => w.with::<PixelLight, I, R>(),
+        StageName::VertexLight if texture => w.with::<TexturedVertexLight<SHADOWS>, I, R>(),
+        StageName::VertexLight => w.with::<VertexLight<SHADOWS>, I, R>(),
+        StageName::PixelLight if normal_map => w.with::<NormalMappedPixelLight<SHADOWS>, I, R>(),
+        StageName::PixelLight if normals && texture => {
+            w.with::<SmoothTexturedPixelLight<SHADOWS>, I, R>()
+        }
+        StageName::PixelLight if normals => w.with::<SmoothPixelLight<SHADOWS>, I, R>(),
+        StageName::PixelLight if texture => w.with::<TexturedPixelLight<SHADOWS>, I, R>(),
+        _ => w.with::<PixelLight<SHADOWS>, I, R>(),
     }
 }
 
@@ -233,6 +233,13 @@ impl Figure {
 
     pub fn with_lines(self, lines: Lines) -> Self {
         Figure { lines, ..self }
+    }
+
+    /// The light's shadow map when this figure draws shadows; none otherwise, so
+    /// a frame without shadows draws no map. `near` is the camera's near plane.
+    pub fn shadow_map(self, mesh: &Mesh, light: &Light, near: f32) -> Option<ShadowMap> {
+        (self.shadows != Shadows::None)
+            .then(|| ShadowMap::render(mesh, light, SHADOW_MAP_SIZE, near, self.shadows))
     }
 
     /// With shadows, for the lit stages; others draw no light to shadow.

@@ -126,10 +126,13 @@ impl Scene {
         Some(((d22 * dp1 - d12 * dp2) / det, (d11 * dp2 - d12 * dp1) / det))
     }
 
-    /// The surface normal of triangle `i` at `hit`: the face's, or its vertex
-    /// normals weighted by the hit's barycentric coordinates, renormalised; then
-    /// tilted by the face's normal map, if it has one, as the rasterizer does.
-    fn normal(&self, i: usize, hit: Vec3, filter: Filter) -> Vec3 {
+    /// What the surface of triangle `i` is at `hit`: its reflectance ρ (the
+    /// texture at the hit's texture coordinate, or the colour) and its normal
+    /// (the face's, or the vertex normals weighted by the hit's barycentric
+    /// coordinates and renormalised, then tilted by a normal map as the
+    /// rasterizer does). The barycentric weights and the texture coordinate are
+    /// found once for both.
+    fn surface_at(&self, i: usize, hit: Vec3, filter: Filter) -> (Vec3, Vec3) {
         let tri = &self.bvh.triangles[i];
         let weights = self.barycentric(i, hit);
         let normal = match (self.normals.get(i), weights) {
@@ -139,33 +142,15 @@ impl Scene {
             _ => tri.normal,
         };
         let (Some(&Some(m)), Some((u, v))) = (self.mapped.get(i), weights) else {
-            return normal;
+            return (tri.color, normal);
         };
-        let map = m.normal_map.and_then(|t| self.textures.get(t as usize));
-        match map {
-            Some(map) if m.tangent != Vec3::ZERO => {
-                let uv = m.uv[0] * (1.0 - u - v) + m.uv[1] * u + m.uv[2] * v;
-                let n = map.sample(uv, filter) * 2.0 - Vec3::ONE;
-                (m.tangent * n.x + m.bitangent * n.y + normal * n.z).normalize_or(normal)
-            }
-            _ => normal,
-        }
-    }
-
-    /// The reflectance ρ of triangle `i` at `hit`: its texture at the texture
-    /// coordinate the hit's barycentric weights give, or its colour.
-    fn reflectance(&self, i: usize, hit: Vec3, filter: Filter) -> Vec3 {
-        let tri = &self.bvh.triangles[i];
-        let Some(&Some(m)) = self.mapped.get(i) else {
-            return tri.color;
-        };
-        let (Some(texture), Some((u, v))) = (
-            m.texture.and_then(|t| self.textures.get(t as usize)),
-            self.barycentric(i, hit),
-        ) else {
-            return tri.color;
-        };
-        texture.sample(m.uv[0] * (1.0 - u - v) + m.uv[1] * u + m.uv[2] * v, filter)
+        let uv = m.uv[0] * (1.0 - u - v) + m.uv[1] * u + m.uv[2] * v;
+        let texture = |t: Option<u32>| t.and_then(|t| self.textures.get(t as usize));
+        let rho = texture(m.texture).map_or(tri.color, |t| t.sample(uv, filter));
+        let normal = texture(m.normal_map).map_or(normal, |map| {
+            map.tangent_normal(uv, filter, [m.tangent, m.bitangent, normal])
+        });
+        (rho, normal)
     }
 }
 
@@ -191,11 +176,11 @@ pub fn trace(
                     .bvh
                     .nearest(hit, to_light, 1e-4)
                     .is_some_and(|(s, _)| s < 1.0);
-            let rho = scene.reflectance(i, hit, options.filter);
+            let (rho, normal) = scene.surface_at(i, hit, options.filter);
             if blocked {
                 rho * light.indirect
             } else {
-                light.reflected(hit, scene.normal(i, hit, options.filter), rho)
+                light.reflected(hit, normal, rho)
             }
         }
     };

@@ -12,7 +12,7 @@ use crate::measure::plot::{Canvas, LogLog, BLACK, DARK};
 use crate::measure::raytrace::{raytrace, Options, Shading, Traced};
 use crate::measure::timing::{time_runs, Timing};
 use crate::pipeline::dof::DepthOfField;
-use crate::pipeline::shadow::{ShadowMap, Shadows, SHADOW_MAP_SIZE};
+use crate::pipeline::shadow::Shadows;
 use crate::pipeline::{Camera, Frame, Light, Mesh, Uniforms};
 use crate::scene::{framed_pose, subdivide, Pose, Scene};
 use std::fmt::Write as _;
@@ -440,7 +440,7 @@ pub fn markdown(rows: &[Row], plan: &Plan, machine: &str, scene: &str) -> String
         );
     }
     out.push_str(&conclusions(rows, plan, scene));
-    let header = "| stage | size | k | triangles | median ms | x faster than ray tracer | within 1 px | pixels differing (all) | (interior) | RMSE / max / PSNR dB (all) | RMSE (interior) | max (interior) | PSNR dB (interior) |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|";
+    let header = TABLE_HEADER;
     let _ = writeln!(out, "## By image size (k = 1: the plain box)\n\n{header}");
     for r in rows
         .iter()
@@ -889,9 +889,7 @@ pub fn measure_options(
         let mut pipeline = case.figure.pipeline_for(mesh);
         let mut frame = Frame::default();
         let mut draw = |frame: &mut Frame| {
-            let shadow = (case.figure.shadows != Shadows::None).then(|| {
-                ShadowMap::render(mesh, &light, SHADOW_MAP_SIZE, near, case.figure.shadows)
-            });
+            let shadow = case.figure.shadow_map(mesh, &light, near);
             let uniforms = Uniforms {
                 textures: &mesh.textures,
                 eye: camera.position,
@@ -899,7 +897,7 @@ pub fn measure_options(
             };
             pipeline.render(mesh, &camera, &uniforms.with_shadow(shadow.as_ref()), frame);
             if let Some(dof) = case.dof {
-                *frame = dof.apply(frame, camera.focal);
+                dof.apply(frame, camera.focal);
             }
         };
         draw(&mut frame); // warm-up
@@ -947,7 +945,7 @@ pub fn options_markdown(rows: &[Row]) -> String {
          Each against the ray tracer given the same texture, normal map or shadow \
          rays (the shadow map's error is against shadow rays); parallax and depth of \
          field have no ray-traced counterpart here, so only their time is given. \
-         Times include the shadow map and the post-process.\n\n{OPTIONS_HEADER}\n"
+         Times include the shadow map and the post-process.\n\n{TABLE_HEADER}\n"
     );
     for r in rows {
         row_line(&mut out, r);
@@ -955,4 +953,5 @@ pub fn options_markdown(rows: &[Row]) -> String {
     out
 }
 
-const OPTIONS_HEADER: &str = "| stage | size | k | triangles | median ms | x faster than ray tracer | within 1 px | pixels differing (all) | (interior) | RMSE / max / PSNR dB (all) | RMSE (interior) | max (interior) | PSNR dB (interior) |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|";
+/// The header of every table of rows.
+const TABLE_HEADER: &str = "| stage | size | k | triangles | median ms | x faster than ray tracer | within 1 px | pixels differing (all) | (interior) | RMSE / max / PSNR dB (all) | RMSE (interior) | max (interior) | PSNR dB (interior) |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|";

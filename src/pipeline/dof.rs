@@ -36,31 +36,23 @@ impl DepthOfField {
         }
     }
 
-    /// `frame` blurred by each pixel's circle of confusion. A frame without a
-    /// depth buffer is returned as it is.
-    pub fn apply(&self, frame: &Frame, focal: f32) -> Frame {
+    /// Blurs `frame` in place by each pixel's circle of confusion: the table
+    /// keeps the sharp colours, so each pixel can be overwritten as it is done.
+    /// A frame without a depth buffer is left as it is.
+    pub fn apply(&self, frame: &mut Frame, focal: f32) {
         let (w, h) = (frame.width as usize, frame.height as usize);
         if frame.depth.len() != w * h || w == 0 || h == 0 {
-            return frame.clone();
+            return;
         }
         let table = SummedArea::new(frame);
-        let color = (0..w * h)
-            .map(|i| {
-                let r = self.radius(frame.depth[i], focal) as usize;
-                if r == 0 {
-                    return frame.color[i];
-                }
+        for (i, (color, &zinv)) in frame.color.iter_mut().zip(&frame.depth).enumerate() {
+            let r = self.radius(zinv, focal) as usize;
+            if r > 0 {
                 let (x, y) = (i % w, i / w);
                 let (x0, x1) = (x.saturating_sub(r), (x + r).min(w - 1));
                 let (y0, y1) = (y.saturating_sub(r), (y + r).min(h - 1));
-                pack(table.mean(x0, y0, x1, y1))
-            })
-            .collect();
-        Frame {
-            width: frame.width,
-            height: frame.height,
-            color,
-            depth: frame.depth.clone(),
+                *color = pack(table.mean(x0, y0, x1, y1));
+            }
         }
     }
 }
@@ -139,7 +131,8 @@ mod tests {
         };
         // f = 1: radius |1/z - 1|, so depth 1 is sharp and 1/z = 2 has radius 1.
         let depth = vec![2.0, 2.0, 1.0, 2.0, 2.0];
-        let out = dof.apply(&frame(color, depth, 5), 1.0);
+        let mut out = frame(color, depth, 5);
+        dof.apply(&mut out, 1.0);
         assert_eq!(out.color[2], white, "in focus");
         assert_eq!(out.color[0], 0, "pixels 0 and 1: black");
         // Pixel 1: the mean of pixels 0 to 2, a third of white.
@@ -154,6 +147,8 @@ mod tests {
             focus: 1.0,
             aperture: 1.0,
         };
-        assert_eq!(dof.apply(&f, 500.0), f);
+        let mut out = f.clone();
+        dof.apply(&mut out, 500.0);
+        assert_eq!(out, f);
     }
 }

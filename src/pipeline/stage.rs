@@ -138,12 +138,12 @@ impl<'a> Uniforms<'a> {
             .normal_map
             .and_then(|i| self.textures.get(i as usize));
         match map {
-            Some(map) if surface.tangent != Vec3::ZERO => {
-                let n = map.sample(uv, self.filter) * 2.0 - Vec3::ONE;
-                (surface.tangent * n.x + surface.bitangent * n.y + normal * n.z)
-                    .normalize_or(normal)
-            }
-            _ => normal,
+            Some(map) => map.tangent_normal(
+                uv,
+                self.filter,
+                [surface.tangent, surface.bitangent, normal],
+            ),
+            None => normal,
         }
     }
 

@@ -60,6 +60,23 @@ impl Texture {
         self.texels[wrap(y, self.height) * self.width as usize + wrap(x, self.width)]
     }
 
+    /// This texture read as a tangent-space normal map at `uv`: the texel c
+    /// encodes `n = 2c - 1` (x along `tangent`, the direction u grows; y along
+    /// `bitangent`, where v grows; z along `normal`), turned into that frame and
+    /// renormalised; `normal` itself where the frame is degenerate.
+    pub fn tangent_normal(
+        &self,
+        uv: Vec2,
+        filter: Filter,
+        [tangent, bitangent, normal]: [Vec3; 3],
+    ) -> Vec3 {
+        if tangent == Vec3::ZERO {
+            return normal;
+        }
+        let n = self.sample(uv, filter) * 2.0 - Vec3::ONE;
+        (tangent * n.x + bitangent * n.y + normal * n.z).normalize_or(normal)
+    }
+
     /// The reflectance at texture coordinate `uv`: the point `(u W, (1 - v) H)` of
     /// the image, read with `filter`.
     pub fn sample(&self, uv: Vec2, filter: Filter) -> Vec3 {
