@@ -13,7 +13,7 @@ use rasterlab::pipeline::Filter;
 use rasterlab::scene::texture::{
     apply_normal_map, apply_parallax, apply_texture, parse_normal_map, TextureSpec,
 };
-use rasterlab::scene::{framed_pose, parse_scene, write_obj, Scene};
+use rasterlab::scene::{framed_pose, parse_scene, Scene};
 use rasterlab::{Figure, StageName};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -655,12 +655,12 @@ fn check(a: &CheckArgs) -> Result<(), Failure> {
     if let Some(CheckRows::Rows(r)) = &a.rows {
         let result = app::check::check_rows_file(&r.file, &r.vertices).map_err(failure)?;
         if r.json {
-            return Ok(print_out(&format!(
+            return print_out(&format!(
                 "{}\n",
                 result.json(&r.file.display().to_string())
-            ))?);
+            ));
         }
-        return Ok(print_out(&result.text())?);
+        return print_out(&result.text());
     }
     let image = a
         .image
@@ -694,9 +694,11 @@ fn check(a: &CheckArgs) -> Result<(), Failure> {
 
 /// Prints to standard output; a reader that has gone away (`| head`) ends the
 /// output quietly.
-fn print_out(text: &str) -> Result<(), String> {
-    app::image_io::write_bytes(std::path::Path::new("-"), text.as_bytes())
-        .map_err(|e| e.to_string())
+fn print_out(text: &str) -> Result<(), Failure> {
+    Ok(app::image_io::write_bytes(
+        std::path::Path::new("-"),
+        text.as_bytes(),
+    )?)
 }
 
 fn render(stage: StageName, args: &Render) -> Result<(), Failure> {
@@ -711,8 +713,7 @@ fn render(stage: StageName, args: &Render) -> Result<(), Failure> {
     let (scene, settings) = args.scene.resolve()?;
     let runs = args.time.map(|n| n as usize);
     let (timing, stats) =
-        app::render_to_file(figure, &scene.mesh, &settings, &out, runs, args.buffer)
-            .map_err(|e| e.to_string())?;
+        app::render_to_file(figure, &scene.mesh, &settings, &out, runs, args.buffer)?;
     if let Some(t) = timing {
         eprintln!("render: {t}");
     }
@@ -728,11 +729,23 @@ fn render(stage: StageName, args: &Render) -> Result<(), Failure> {
 enum Failure {
     Usage(String),
     Run(String),
+    /// Standard output's reader went away (`| head`): nothing more to say, but
+    /// the output is not whole.
+    ClosedEarly,
 }
 
 impl From<String> for Failure {
     fn from(message: String) -> Failure {
         Failure::Run(message)
+    }
+}
+
+impl From<app::image_io::WriteError> for Failure {
+    fn from(e: app::image_io::WriteError) -> Failure {
+        match e.closed_early {
+            true => Failure::ClosedEarly,
+            false => Failure::Run(e.to_string()),
+        }
     }
 }
 
@@ -746,8 +759,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Command::PixelLight(a) => render(StageName::PixelLight, a),
         Command::All(a) => {
             let (scene, settings) = a.scene.resolve()?;
-            let written =
-                app::render_all(&scene.mesh, &settings, &a.out).map_err(|e| e.to_string())?;
+            let written = app::render_all(&scene.mesh, &settings, &a.out)?;
             for path in written {
                 eprintln!("wrote {}", path.display());
             }
@@ -781,8 +793,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 &options,
                 &out,
                 a.render.time.map(|n| n as usize),
-            )
-            .map_err(|e| e.to_string())?;
+            )?;
             if let Some(t) = timing {
                 eprintln!("render: {t}");
             }
@@ -794,8 +805,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             let mut pose = rasterlab::measure::report::pose_for(&scene);
             pose.light = a.light.unwrap_or(pose.light);
             pose.light_power = a.light_power.unwrap_or(pose.light_power);
-            let written = app::report(&a.out, a.quick, &scene, &pose, |line| eprintln!("{line}"))
-                .map_err(|e| e.to_string())?;
+            let written = app::report(&a.out, a.quick, &scene, &pose, |line| eprintln!("{line}"))?;
             for path in written {
                 eprintln!("wrote {}", path.display());
             }
@@ -835,7 +845,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
         }
         Command::Export(a) => {
             let scene = load_scene(&a.scene)?;
-            write_obj(&scene.mesh, &a.out)?;
+            app::export_obj(&scene.mesh, &a.out)?;
             eprintln!(
                 "wrote {} and its .mtl ({} triangles)",
                 a.out.display(),
@@ -848,8 +858,8 @@ fn run(cli: Cli) -> Result<(), Failure> {
             let name = figure.default_file().replace(".png", ".gif");
             let out = a.out.clone().unwrap_or_else(|| PathBuf::from(name));
             let (scene, settings) = a.scene.resolve()?;
-            let frames = app::animate_to_file(figure, &scene.mesh, &settings, &out, a.delay as u32)
-                .map_err(|e| e.to_string())?;
+            let frames =
+                app::animate_to_file(figure, &scene.mesh, &settings, &out, a.delay as u32)?;
             eprintln!("wrote {} ({frames} frames)", app::image_io::describe(&out));
             Ok(())
         }
@@ -877,7 +887,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             };
             let out = out.clone().unwrap_or_else(|| PathBuf::from(default));
             let frame = picture.map_err(Failure::Usage)?;
-            app::image_io::write_png(&frame, &out).map_err(|e| e.to_string())?;
+            app::image_io::write_image(&frame, &out)?;
             eprintln!("wrote {}", app::image_io::describe(&out));
             Ok(())
         }
@@ -1042,5 +1052,6 @@ fn main() -> ExitCode {
             eprintln!("error: {message}");
             ExitCode::from(1)
         }
+        Err(Failure::ClosedEarly) => ExitCode::from(1),
     }
 }

@@ -743,7 +743,7 @@ fn bad_input_is_a_one_line_error() {
         &["check", &p("missing.png")],
         1,
         &format!(
-            "error: cannot read {}: No such file or directory (os error 2)",
+            "error: cannot read {}: cannot open: No such file or directory (os error 2)",
             p("missing.png")
         ),
     );
@@ -796,7 +796,7 @@ fn bad_input_is_a_one_line_error() {
         &["check", "rows", &p("missing.txt"), "1,1", "2,2", "3,1"],
         1,
         &format!(
-            "error: cannot read {}: No such file or directory (os error 2)",
+            "error: cannot read {}: cannot open: No such file or directory (os error 2)",
             p("missing.txt")
         ),
     );
@@ -839,14 +839,13 @@ fn the_command_writes_json_a_heat_map_and_the_expected_image() {
         assert!(json.contains(field), "{field} in {json}");
     }
     assert_eq!(json.lines().count(), 1);
-    let heat = rasterlab::app::image_io::read_rgb_png(&out.join("student-heat.png")).unwrap();
+    let heat = rasterlab::app::image_io::read_rgb(&out.join("student-heat.png")).unwrap();
     assert_eq!(
         (heat.0, heat.1),
         (500, 584),
         "the map with its title and scale"
     );
-    let expected =
-        rasterlab::app::image_io::read_rgb_png(&out.join("student-expected.png")).unwrap();
+    let expected = rasterlab::app::image_io::read_rgb(&out.join("student-expected.png")).unwrap();
     let off = expected
         .2
         .iter()
@@ -903,16 +902,16 @@ fn page_example() -> Frame {
 #[test]
 fn the_check_pages_pictures_are_current() {
     use rasterlab::app::check::{check_image_file, CheckOptions};
-    use rasterlab::app::image_io::{read_rgb_png, write_png};
+    use rasterlab::app::image_io::{read_rgb, write_image};
     let docs = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/check"));
     let shot = docs.join("student.png");
     let frame = page_example();
     let update = std::env::var_os("RASTERLAB_UPDATE_DOCS").is_some();
     if update {
         std::fs::create_dir_all(docs).unwrap();
-        write_png(&frame, &shot).unwrap();
+        write_image(&frame, &shot).unwrap();
     }
-    let (w, h, committed) = read_rgb_png(&shot).unwrap();
+    let (w, h, committed) = read_rgb(&shot).unwrap();
     assert!(
         (w, h) == (500, 500) && committed == frame.to_rgb8(),
         "{} is stale",
@@ -947,8 +946,8 @@ fn the_check_pages_pictures_are_current() {
         std::fs::copy(&heat, docs.join("student-heat.png")).unwrap();
     }
     assert_eq!(
-        read_rgb_png(&heat).unwrap(),
-        read_rgb_png(&docs.join("student-heat.png")).unwrap(),
+        read_rgb(&heat).unwrap(),
+        read_rgb(&docs.join("student-heat.png")).unwrap(),
         "docs/check/student-heat.png is stale"
     );
 }

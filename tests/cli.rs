@@ -214,7 +214,7 @@ fn negative_vectors_and_timing() {
     for i in [2, 5, 8] {
         assert!(words[i].parse::<f64>().is_ok(), "{line}");
     }
-    let (w, h, _) = rasterlab::app::image_io::read_rgb_png(&out).unwrap();
+    let (w, h, _) = rasterlab::app::image_io::read_rgb(&out).unwrap();
     assert_eq!((w, h), (64, 48));
 }
 
@@ -241,7 +241,7 @@ fn all_writes_every_figure_and_the_overview() {
             "fig8-pixel-light-affine.png",
         ]
     );
-    let (w, h, _) = rasterlab::app::image_io::read_rgb_png(&dir.join("fig1-overview.png")).unwrap();
+    let (w, h, _) = rasterlab::app::image_io::read_rgb(&dir.join("fig1-overview.png")).unwrap();
     assert_eq!((w, h), (4 * 40 + 3 * 8, 2 * (30 + 28) + 8));
 }
 

@@ -3,7 +3,7 @@
 //! `cargo run --release -- all --out steps` and commit the new PNGs.
 
 mod common;
-use rasterlab::app::image_io::read_rgb_png;
+use rasterlab::app::image_io::read_rgb;
 use rasterlab::app::overview::figure_one;
 use rasterlab::app::{self, Settings, OVERVIEW_FILE};
 use rasterlab::pipeline::shadow::Shadows;
@@ -18,7 +18,7 @@ fn steps() -> &'static Path {
 /// Compares an image with a committed PNG, naming the first differing pixel.
 fn assert_matches(name: &str, width: u32, height: u32, rgb: &[u8]) {
     let path = steps().join(name);
-    let (w, h, committed) = read_rgb_png(&path).unwrap_or_else(|e| panic!("{e}"));
+    let (w, h, committed) = read_rgb(&path).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!((w, h), (width, height), "{name}: size");
     if let Some(i) = (0..rgb.len())
         .step_by(3)
@@ -68,7 +68,7 @@ fn docs() -> std::path::PathBuf {
 
 /// Compares a picture with a committed PNG anywhere in the repository.
 fn assert_picture(path: &Path, frame: &rasterlab::Frame) {
-    let (w, h, committed) = read_rgb_png(path).unwrap_or_else(|e| panic!("{e}"));
+    let (w, h, committed) = read_rgb(path).unwrap_or_else(|e| panic!("{e}"));
     let rgb = frame.to_rgb8();
     assert!(
         (w, h) == (frame.width, frame.height) && committed == rgb,

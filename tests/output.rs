@@ -146,7 +146,7 @@ fn the_format_follows_the_name() {
     assert!(o.status.success(), "{}", err(&o));
     let bytes = fs::read(&bmp).unwrap();
     assert!(bytes.starts_with(b"BM"), "a BMP");
-    let (w, h, _) = rasterlab::app::image_io::read_rgb_png(&bmp).unwrap();
+    let (w, h, _) = rasterlab::app::image_io::read_rgb(&bmp).unwrap();
     assert_eq!((w, h), (8, 6));
     for name in ["p.jpg", "p"] {
         let o = points_to(&dir.join(name), None);
@@ -173,8 +173,9 @@ fn an_existing_file_keeps_its_permissions() {
 }
 
 #[test]
-fn a_closed_pipe_stops_quietly() {
-    // The reader goes away before anything is written: no panic, no backtrace.
+fn a_closed_pipe_stops_quietly_and_fails() {
+    // The reader goes away before anything is written: no panic, no backtrace,
+    // no claim that anything was written, and a failing exit status.
     for args in [
         &["pixel-light", "-o", "-"][..],
         &["rows", "10,5", "5,10", "15,15"][..],
@@ -187,7 +188,7 @@ fn a_closed_pipe_stops_quietly() {
             .unwrap();
         drop(child.stdout.take());
         let o = child.wait_with_output().unwrap();
-        assert!(o.status.success(), "{args:?}: {}", err(&o));
-        assert!(!err(&o).contains("panicked"), "{args:?}: {}", err(&o));
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {}", err(&o));
+        assert_eq!(err(&o), "", "{args:?}");
     }
 }

@@ -109,7 +109,7 @@ fn quick_report_writes_its_three_files() {
         lines.iter().all(|l| l.split(',').count() == columns),
         "{csv}"
     );
-    let (w, h, _) = rasterlab::app::image_io::read_rgb_png(&dir.join("error-vs-time.png")).unwrap();
+    let (w, h, _) = rasterlab::app::image_io::read_rgb(&dir.join("error-vs-time.png")).unwrap();
     assert_eq!((w, h), (1700, 1000));
 }
 
@@ -131,7 +131,7 @@ fn raytrace_subcommand() {
         .output()
         .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let (w, h, _) = rasterlab::app::image_io::read_rgb_png(&out).unwrap();
+    let (w, h, _) = rasterlab::app::image_io::read_rgb(&out).unwrap();
     assert_eq!((w, h), (40, 30));
     let o = Command::new(env!("CARGO_BIN_EXE_rasterlab"))
         .args(["raytrace", "--samples", "0"])

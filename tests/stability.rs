@@ -1,5 +1,6 @@
 //! The stress catalogue through the binary, and bad input that must be refused.
 
+mod common;
 use std::process::Command;
 
 fn rasterlab(args: &[&str]) -> std::process::Output {
@@ -93,8 +94,7 @@ fn bad_numbers_are_refused_before_drawing() {
 
 #[test]
 fn no_clip_draws_wrong_but_safely() {
-    let dir = std::env::temp_dir().join(format!("rasterlab-noclip-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = common::temp_dir("noclip");
     let (clipped, unclipped) = (dir.join("clip.png"), dir.join("noclip.png"));
     let pose = ["--camera", "0.3,0.2,-0.9", "--yaw", "40"];
     for (out, extra) in [(&clipped, None), (&unclipped, Some("--no-clip"))] {
@@ -103,8 +103,8 @@ fn no_clip_draws_wrong_but_safely() {
         args.extend(extra);
         assert!(rasterlab(&args).status.success());
     }
-    let (_, _, a) = rasterlab::app::image_io::read_rgb_png(&clipped).unwrap();
-    let (_, _, b) = rasterlab::app::image_io::read_rgb_png(&unclipped).unwrap();
+    let (_, _, a) = rasterlab::app::image_io::read_rgb(&clipped).unwrap();
+    let (_, _, b) = rasterlab::app::image_io::read_rgb(&unclipped).unwrap();
     // The unclipped frame paints a corner-behind-the-camera triangle across the
     // view: a large share of its pixels differ from the clipped one.
     let differing = a.chunks(3).zip(b.chunks(3)).filter(|(p, q)| p != q).count();

@@ -7,7 +7,7 @@
 
 mod common;
 use common::temp_dir;
-use rasterlab::app::image_io::read_rgb_png;
+use rasterlab::app::image_io::read_rgb;
 use std::path::Path;
 use std::process::Command;
 
@@ -55,8 +55,8 @@ fn assert_renderer_agrees(dir: &Path, args: &[String], shot: &Path) {
         .status()
         .unwrap();
     assert!(status.success(), "{args:?}");
-    let (wa, ha, pa) = read_rgb_png(shot).unwrap();
-    let (wb, hb, pb) = read_rgb_png(&reference).unwrap();
+    let (wa, ha, pa) = read_rgb(shot).unwrap();
+    let (wb, hb, pb) = read_rgb(&reference).unwrap();
     assert_eq!((wa, ha), (wb, hb));
     let differing = pa
         .chunks(3)

@@ -1,13 +1,14 @@
 //! `rasterlab check`: reading a student's screenshot or rows printout, running the
 //! checker of [`crate::measure::check`], and writing its report and heat map.
 
-use crate::app::image_io::{write_png, WriteError};
+use crate::app::image_io::{write_image, WriteError};
 use crate::measure::check::check_image;
 use crate::measure::check::image::{ImageCheck, Setup};
 use crate::measure::check::rows::{check_rows, parse_rows, RowsCheck};
 use crate::measure::figure::StageName;
 use crate::measure::heat::heat_map_picture;
 use crate::pipeline::Frame;
+use crate::scene::input::{read_image, read_text_bounded, read_text_file, ImageLimit};
 use glam::Vec3;
 use std::path::{Path, PathBuf};
 
@@ -46,14 +47,15 @@ pub struct CheckOptions {
     pub out: Option<PathBuf>,
 }
 
-/// Reads a PNG or BMP screenshot as a frame (alpha is dropped).
+/// Reads a PNG or BMP screenshot as a frame (alpha is dropped); one larger than
+/// [`MAX_CHECK_SIDE`] is refused from its header, before it is decoded.
 pub fn read_screenshot(path: &Path) -> Result<Frame, String> {
-    let img = image::ImageReader::open(path)
-        .map_err(|e| format!("cannot read {}: {e}", path.display()))?
-        .with_guessed_format()
-        .map_err(|e| format!("cannot read {}: {e}", path.display()))?
-        .decode()
-        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    let limit = ImageLimit {
+        max_side: MAX_CHECK_SIDE,
+        what: "a screenshot of the lab",
+    };
+    let img =
+        read_image(path, limit).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
     let rgb = img.to_rgb8();
     let mut frame = Frame::new(rgb.width(), rgb.height());
     for (c, p) in frame.color.iter_mut().zip(rgb.pixels()) {
@@ -81,12 +83,6 @@ pub fn check_image_file(
             )));
         }
     }
-    if w > MAX_CHECK_SIDE || h > MAX_CHECK_SIDE {
-        return Err(CheckError::Run(format!(
-            "{} is {w}x{h}: too large for a screenshot of the lab (at most {MAX_CHECK_SIDE} pixels a side)",
-            path.display()
-        )));
-    }
     let mut setup = Setup::handout(w, h);
     setup.stage = options.stage;
     if let Some(f) = options.focal {
@@ -106,8 +102,7 @@ pub fn check_image_file(
     let check = check_image(&observed, &setup);
     let mut written = Vec::new();
     if let Some(dir) = &options.out {
-        std::fs::create_dir_all(dir)
-            .map_err(|e| CheckError::Run(format!("cannot write {}: {e}", dir.display())))?;
+        crate::app::create_folder(dir)?;
         let stem = path
             .file_stem()
             .map_or("image".into(), |s| s.to_string_lossy().into_owned());
@@ -118,24 +113,26 @@ pub fn check_image_file(
         let heat = heat_map_picture(&observed, &check.expected, &title)
             .expect("the expected image has the screenshot's size");
         let heat_path = dir.join(format!("{stem}-heat.png"));
-        write_png(&heat, &heat_path)?;
+        write_image(&heat, &heat_path)?;
         let expected_path = dir.join(format!("{stem}-expected.png"));
-        write_png(&check.expected, &expected_path)?;
+        write_image(&check.expected, &expected_path)?;
         written.extend([heat_path, expected_path]);
     }
     Ok((check, written))
 }
 
+/// The longest rows printout read: the handout's program prints a row in about
+/// 40 bytes, and no image has a million rows.
+pub const MAX_ROWS_BYTES: u64 = 64 << 20;
+
 /// `check rows FILE X,Y ...`: reads the printout (`-` for standard input) and
 /// compares it with the polygon's rows.
 pub fn check_rows_file(path: &Path, vertices: &[(i32, i32)]) -> Result<RowsCheck, CheckError> {
     let text = if path.as_os_str() == "-" {
-        let mut s = String::new();
-        std::io::Read::read_to_string(&mut std::io::stdin(), &mut s)
-            .map_err(|e| CheckError::Run(format!("cannot read standard input: {e}")))?;
-        s
+        read_text_bounded(std::io::stdin(), MAX_ROWS_BYTES)
+            .map_err(|e| CheckError::Run(format!("cannot read standard input: {e}")))?
     } else {
-        std::fs::read_to_string(path)
+        read_text_file(path, MAX_ROWS_BYTES)
             .map_err(|e| CheckError::Run(format!("cannot read {}: {e}", path.display())))?
     };
     let name = if path.as_os_str() == "-" {

@@ -1,18 +1,23 @@
-//! Writing images and text without ever leaving a half-written file behind.
+//! Writing images and text without ever leaving a half-written file behind, or
+//! writing through a file that someone else planted.
 //!
 //! - A regular file (or a new one) is written to a temporary file beside it, which
-//!   is then renamed into place.
+//!   is then renamed into place. The temporary file is created exclusively, with
+//!   an unpredictable short name (`tempfile`), so a link planted under the name it
+//!   will have cannot redirect the write and a long output name still fits.
 //! - A symbolic link is followed: its target is replaced that way, the link stays.
 //! - Anything else that exists (a device such as /dev/null, a FIFO) is written
 //!   directly, since renaming over it would replace it.
-//! - `-` is standard output.
+//! - `-` is standard output. A reader that closes it early (`| head`) stops the
+//!   output quietly, but the command fails: nothing claims it was written.
 //!
 //! The image format follows the name: `.png` or `.bmp`.
 
 use crate::pipeline::Frame;
 use std::fmt;
 use std::fs;
-use std::io::{BufWriter, Write};
+use std::io::{self, BufWriter, Write};
+use std::os::unix::fs::{OpenOptionsExt, PermissionsExt};
 use std::path::{Path, PathBuf};
 
 /// Why an image could not be written; the message names the path.
@@ -20,11 +25,23 @@ use std::path::{Path, PathBuf};
 pub struct WriteError {
     pub path: PathBuf,
     pub reason: String,
+    /// The reader of standard output went away: say nothing more, but fail.
+    pub closed_early: bool,
+}
+
+impl WriteError {
+    pub fn new(path: &Path, reason: impl Into<String>) -> Self {
+        WriteError {
+            path: path.to_path_buf(),
+            reason: reason.into(),
+            closed_early: false,
+        }
+    }
 }
 
 impl fmt::Display for WriteError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "cannot write {}: {}", self.path.display(), self.reason)
+        write!(f, "cannot write {}: {}", describe(&self.path), self.reason)
     }
 }
 
@@ -62,36 +79,41 @@ pub fn describe(path: &Path) -> String {
 }
 
 /// Writes `frame` to `path` as 8-bit RGB in the format its name asks for.
-pub fn write_png(frame: &Frame, path: &Path) -> Result<(), WriteError> {
-    write_rgb_png(&frame.to_rgb8(), frame.width, frame.height, path)
+pub fn write_image(frame: &Frame, path: &Path) -> Result<(), WriteError> {
+    let rgb = frame
+        .try_to_rgb8()
+        .map_err(|why| WriteError::new(path, why))?;
+    write_rgb(&rgb, frame.width, frame.height, path)
 }
 
 /// Writes 8-bit RGB rows to `path` in the format its name asks for (PNG when the
-/// name says nothing), encoded in memory first so nothing is written on failure.
-pub fn write_rgb_png(rgb: &[u8], width: u32, height: u32, path: &Path) -> Result<(), WriteError> {
-    let fail = |reason: String| WriteError {
-        path: path.to_path_buf(),
-        reason,
-    };
-    let mut bytes = Vec::new();
-    let encoded = match ImageFormat::of(path).unwrap_or(ImageFormat::Png) {
-        ImageFormat::Png => image::ImageEncoder::write_image(
-            image::codecs::png::PngEncoder::new(&mut bytes),
-            rgb,
-            width,
-            height,
-            image::ExtendedColorType::Rgb8,
-        ),
-        ImageFormat::Bmp => image::ImageEncoder::write_image(
-            image::codecs::bmp::BmpEncoder::new(&mut bytes),
-            rgb,
-            width,
-            height,
-            image::ExtendedColorType::Rgb8,
-        ),
-    };
-    encoded.map_err(|e| fail(e.to_string()))?;
-    write_bytes(path, &bytes)
+/// name says nothing). A file is encoded straight into its temporary file, so a
+/// large image needs no second copy in memory; standard output and devices get
+/// the image encoded whole first, so nothing is written on failure.
+pub fn write_rgb(rgb: &[u8], width: u32, height: u32, path: &Path) -> Result<(), WriteError> {
+    let format = ImageFormat::of(path).unwrap_or(ImageFormat::Png);
+    write_with(path, |mut out| {
+        let encoded = match format {
+            ImageFormat::Png => image::ImageEncoder::write_image(
+                image::codecs::png::PngEncoder::new(&mut *out),
+                rgb,
+                width,
+                height,
+                image::ExtendedColorType::Rgb8,
+            ),
+            ImageFormat::Bmp => image::ImageEncoder::write_image(
+                image::codecs::bmp::BmpEncoder::new(&mut out),
+                rgb,
+                width,
+                height,
+                image::ExtendedColorType::Rgb8,
+            ),
+        };
+        encoded.map_err(|e| match e {
+            image::ImageError::IoError(e) => e,
+            e => io::Error::other(e.to_string()),
+        })
+    })
 }
 
 /// Writes text to `path` (see the module's rules).
@@ -99,33 +121,138 @@ pub fn write_text(path: &Path, text: &str) -> Result<(), WriteError> {
     write_bytes(path, text.as_bytes())
 }
 
-/// Writes `bytes` to `path` by the module's rules. A reader that closes standard
-/// output early (`| head`) is not an error.
+/// Writes `bytes` to `path` by the module's rules.
 pub fn write_bytes(path: &Path, bytes: &[u8]) -> Result<(), WriteError> {
-    let fail = |reason: String| WriteError {
-        path: path.to_path_buf(),
-        reason,
-    };
+    write_with(path, |out| out.write_all(bytes))
+}
+
+/// Where a path's bytes go.
+enum Destination {
+    Stdout,
+    /// A device or a FIFO: written into directly.
+    Special(PathBuf),
+    /// A regular file, or a new one: replaced by a renamed temporary file.
+    File(PathBuf),
+}
+
+fn destination(path: &Path) -> Result<Destination, WriteError> {
     if path.as_os_str() == "-" {
-        let mut out = std::io::stdout().lock();
-        return match out.write_all(bytes).and_then(|()| out.flush()) {
-            Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(fail(e.to_string())),
-            _ => Ok(()),
-        };
+        return Ok(Destination::Stdout);
     }
-    let target = follow_links(path).map_err(fail)?;
+    let target = follow_links(path).map_err(|why| WriteError::new(path, why))?;
     match fs::metadata(&target) {
-        Ok(m) if !m.is_file() && !m.is_dir() => {
-            // A device or a FIFO: write into it; a rename would replace it.
+        Ok(m) if m.is_dir() => Err(WriteError::new(path, "it is a folder")),
+        Ok(m) if !m.is_file() => Ok(Destination::Special(target)),
+        _ => Ok(Destination::File(target)),
+    }
+}
+
+/// Runs `write` into `path`'s destination by the module's rules.
+pub fn write_with(
+    path: &Path,
+    write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
+) -> Result<(), WriteError> {
+    match destination(path)? {
+        Destination::File(target) => {
+            let staged = stage(path, &target, write)?;
+            commit(path, staged)
+        }
+        Destination::Stdout => {
+            let mut bytes = Vec::new();
+            write(&mut bytes).map_err(|e| WriteError::new(path, e.to_string()))?;
+            let mut out = io::stdout().lock();
+            out.write_all(&bytes)
+                .and_then(|()| out.flush())
+                .map_err(|e| WriteError {
+                    closed_early: e.kind() == io::ErrorKind::BrokenPipe,
+                    ..WriteError::new(path, e.to_string())
+                })
+        }
+        Destination::Special(target) => {
+            let mut bytes = Vec::new();
+            write(&mut bytes).map_err(|e| WriteError::new(path, e.to_string()))?;
+            // O_NONBLOCK: a FIFO with no reader is an error, not a wait.
             let mut f = fs::OpenOptions::new()
                 .write(true)
+                .custom_flags(libc::O_NONBLOCK)
                 .open(&target)
-                .map_err(|e| fail(e.to_string()))?;
-            f.write_all(bytes).map_err(|e| fail(e.to_string()))
+                .map_err(|e| WriteError::new(path, e.to_string()))?;
+            f.write_all(&bytes)
+                .map_err(|e| WriteError::new(path, e.to_string()))
         }
-        Ok(m) if m.is_dir() => Err(fail("it is a folder".into())),
-        _ => write_atomically(&target, bytes).map_err(fail),
     }
+}
+
+/// Writes several files as one: every destination is checked and every
+/// temporary file written before any is renamed into place, so a path that
+/// cannot be written leaves the others as they were (an OBJ and its MTL).
+pub fn write_all_or_none(files: &[(&Path, &[u8])]) -> Result<(), WriteError> {
+    let mut staged = Vec::new();
+    for &(path, bytes) in files {
+        match destination(path)? {
+            Destination::File(target) => {
+                staged.push((path, stage(path, &target, |out| out.write_all(bytes))?))
+            }
+            _ => {
+                return Err(WriteError::new(
+                    path,
+                    "not a regular file: a model and its materials are written as files",
+                ))
+            }
+        }
+    }
+    for (path, s) in staged {
+        commit(path, s)?;
+    }
+    Ok(())
+}
+
+/// A temporary file written in full, and the name it will take.
+struct Staged {
+    file: tempfile::NamedTempFile,
+    target: PathBuf,
+}
+
+/// Writes a temporary file beside `target`: created exclusively (a name that
+/// exists, a planted link included, is never opened), with a short random name,
+/// and the permissions an existing `target` has (a new one gets 0666 less the
+/// umask, as any new file). On failure it is removed.
+fn stage(
+    path: &Path,
+    target: &Path,
+    write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
+) -> Result<Staged, WriteError> {
+    let fail = |e: io::Error| WriteError::new(path, e.to_string());
+    let dir = match target.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let file = tempfile::Builder::new()
+        .prefix(".rasterlab-")
+        .suffix(".tmp")
+        .permissions(fs::Permissions::from_mode(0o666))
+        .tempfile_in(dir)
+        .map_err(fail)?;
+    let mut out = BufWriter::new(file);
+    write(&mut out).map_err(fail)?;
+    let file = out.into_inner().map_err(|e| fail(e.into_error()))?;
+    if let Ok(m) = fs::metadata(target) {
+        file.as_file()
+            .set_permissions(m.permissions())
+            .map_err(fail)?;
+    }
+    Ok(Staged {
+        file,
+        target: target.to_path_buf(),
+    })
+}
+
+fn commit(path: &Path, staged: Staged) -> Result<(), WriteError> {
+    staged
+        .file
+        .persist(&staged.target)
+        .map(drop)
+        .map_err(|e| WriteError::new(path, e.error.to_string()))
 }
 
 /// The file a path finally names: symbolic links followed (relative targets from
@@ -147,35 +274,17 @@ fn follow_links(path: &Path) -> Result<PathBuf, String> {
     Err("too many levels of symbolic links".into())
 }
 
-/// Writes `bytes` to a temporary file beside `path`, then renames it into place;
-/// on any failure the temporary file is removed and `path` is left as it was. An
-/// existing file keeps its permissions.
-fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), String> {
-    let name = path.file_name().ok_or("not a file name")?;
-    let mut tmp_name = std::ffi::OsString::from(".");
-    tmp_name.push(name);
-    tmp_name.push(format!(".{}.tmp", std::process::id()));
-    let tmp = path.with_file_name(tmp_name);
-    let result = (|| {
-        let file = fs::File::create(&tmp).map_err(|e| e.to_string())?;
-        let mut out = BufWriter::new(file);
-        out.write_all(bytes).map_err(|e| e.to_string())?;
-        out.flush().map_err(|e| e.to_string())?;
-        drop(out);
-        if let Ok(m) = fs::metadata(path) {
-            let _ = fs::set_permissions(&tmp, m.permissions());
-        }
-        fs::rename(&tmp, path).map_err(|e| e.to_string())
-    })();
-    if result.is_err() {
-        let _ = fs::remove_file(&tmp);
-    }
-    result
-}
+/// The longest side of an image read back by [`read_rgb`].
+pub const MAX_READ_SIDE: u32 = 16384;
 
 /// Reads a PNG or BMP back as (width, height, RGB rows), for tests and comparisons.
-pub fn read_rgb_png(path: &Path) -> Result<(u32, u32, Vec<u8>), String> {
-    let img = image::open(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+pub fn read_rgb(path: &Path) -> Result<(u32, u32, Vec<u8>), String> {
+    let limit = crate::scene::input::ImageLimit {
+        max_side: MAX_READ_SIDE,
+        what: "an image",
+    };
+    let img = crate::scene::input::read_image(path, limit)
+        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
     let rgb = img.to_rgb8();
     Ok((rgb.width(), rgb.height(), rgb.into_raw()))
 }

@@ -24,7 +24,7 @@ use crate::pipeline::raster::Bounds;
 use crate::pipeline::{Camera, Filter, Frame, Light, Mesh, Uniforms};
 use crate::scene::Scene;
 use glam::Vec3;
-use image_io::{write_png, write_text, WriteError};
+use image_io::{write_image, write_text, WriteError};
 use overview::figure_one;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -139,11 +139,22 @@ pub fn render_with_stats(
     settings: &Settings,
     runs: Option<usize>,
 ) -> (Frame, Option<Timing>, Stats) {
+    render_into(figure, mesh, settings, runs, Frame::default())
+}
+
+/// [`render_with_stats`] into `frame`, whose buffers are reused when they have
+/// the image's size.
+fn render_into(
+    figure: Figure,
+    mesh: &Mesh,
+    settings: &Settings,
+    runs: Option<usize>,
+    mut frame: Frame,
+) -> (Frame, Option<Timing>, Stats) {
     // No threads to be had: one band, on this thread.
     let mut pipeline = parallel::Parallel::new(figure, mesh, settings.threads)
         .or_else(|_| parallel::Parallel::new(figure, mesh, 1))
         .expect("one band needs no thread");
-    let mut frame = Frame::default();
     draw_frame(&mut pipeline, figure, mesh, settings, &mut frame);
     let stats = pipeline.stats();
     let timing = runs.map(|n| {
@@ -198,18 +209,70 @@ pub fn render_to_file(
     runs: Option<usize>,
     buffer: bool,
 ) -> Result<(Option<Timing>, Stats), WriteError> {
-    let (frame, timing, stats) = render_with_stats(figure, mesh, settings, runs);
+    let frame = frame_for(settings, out)?;
+    let (frame, timing, stats) = render_into(figure, mesh, settings, runs, frame);
     match buffer {
-        true => write_png(&depth_buffer_picture(&frame), out)?,
-        false => write_png(&frame, out)?,
+        true => write_image(&depth_buffer_picture(&frame), out)?,
+        false => write_image(&frame, out)?,
     }
     Ok((timing, stats))
+}
+
+/// A frame of the settings' size with a depth buffer, allocated before drawing
+/// so that too large a size is refused with what it needs instead of aborting.
+fn frame_for(settings: &Settings, out: &Path) -> Result<Frame, WriteError> {
+    let (w, h) = (settings.width, settings.height);
+    // Colour and depth (4 + 4 bytes a pixel), then the 8-bit rows written (3).
+    reserve(out, w, h, 11, "drawing and writing")?;
+    Frame::try_new(w, h, true).map_err(|why| WriteError::new(out, why))
+}
+
+/// Refuses, with the memory it needs, a `width` x `height` image that needs
+/// `per_pixel` bytes a pixel for `what` when that much cannot be had: asked for
+/// at once (and given back), so that the work that follows does not abort half
+/// way through.
+fn reserve(
+    out: &Path,
+    width: u32,
+    height: u32,
+    per_pixel: usize,
+    what: &str,
+) -> Result<(), WriteError> {
+    let bytes = (width as usize * height as usize).saturating_mul(per_pixel);
+    let mut probe = Vec::<u8>::new();
+    probe.try_reserve_exact(bytes).map_err(|_| {
+        let need = crate::pipeline::target::megabytes(bytes);
+        WriteError::new(
+            out,
+            format!("out of memory: {what} a {width}x{height} image needs {need}"),
+        )
+    })
+}
+
+/// Writes `mesh` as an OBJ file at `path` and its materials as an MTL file
+/// beside it (same name, `.mtl`): both paths are checked and both files written
+/// in full before either is renamed into place ([`crate::scene::obj_text`]).
+pub fn export_obj(mesh: &Mesh, path: &Path) -> Result<(), WriteError> {
+    let mtl_path = path.with_extension("mtl");
+    let (Some(_), Some(mtl_name)) = (path.file_name(), mtl_path.file_name()) else {
+        return Err(WriteError::new(path, "not a file name"));
+    };
+    let (obj, mtl) = crate::scene::obj_text(mesh, &mtl_name.to_string_lossy())
+        .map_err(|why| WriteError::new(path, why))?;
+    image_io::write_all_or_none(&[(&mtl_path, mtl.as_bytes()), (path, obj.as_bytes())])
 }
 
 /// The image built up triangle by triangle: frame i shows the first i triangles of
 /// `mesh` drawn (about `max_frames` frames: several triangles a frame for larger
 /// meshes), so the order of drawing can be seen, Figure 4's mistake included.
-pub fn build_up(figure: Figure, mesh: &Mesh, settings: &Settings, max_frames: usize) -> Vec<Frame> {
+/// Each frame is allocated before it is drawn, so too large a size is refused
+/// with what the frames need.
+pub fn build_up(
+    figure: Figure,
+    mesh: &Mesh,
+    settings: &Settings,
+    max_frames: usize,
+) -> Result<Vec<Frame>, String> {
     let faces = mesh.faces.len();
     let per_frame = faces.div_ceil(max_frames.max(1)).max(1);
     let mut frames = Vec::new();
@@ -222,16 +285,23 @@ pub fn build_up(figure: Figure, mesh: &Mesh, settings: &Settings, max_frames: us
         faces: Vec::with_capacity(faces),
         ..mesh.clone()
     };
+    let count = faces.div_ceil(per_frame);
+    let depth = pipeline.depth_test();
+    let (w, h) = (settings.width, settings.height);
     while prefix.faces.len() < faces {
         let k = (prefix.faces.len() + per_frame).min(faces);
         prefix
             .faces
             .extend_from_slice(&mesh.faces[prefix.faces.len()..k]);
-        let mut frame = Frame::default();
+        let mut frame = Frame::try_new(w, h, depth).map_err(|why| {
+            let each = (w as usize * h as usize) * if depth { 8 } else { 4 };
+            let all = crate::pipeline::target::megabytes(each * count);
+            format!("{why}; the animation's {count} frames need {all}")
+        })?;
         pipeline.render(&prefix, &camera, &uniforms, &mut frame);
         frames.push(frame);
     }
-    frames
+    Ok(frames)
 }
 
 /// `rasterlab animate`: [`build_up`] of `mesh` written as a GIF that
@@ -243,11 +313,8 @@ pub fn animate_to_file(
     out: &Path,
     delay_ms: u32,
 ) -> Result<usize, WriteError> {
-    let frames = build_up(figure, mesh, settings, 60);
-    let fail = |e: image::ImageError| WriteError {
-        path: out.to_path_buf(),
-        reason: e.to_string(),
-    };
+    let frames = build_up(figure, mesh, settings, 60).map_err(|why| WriteError::new(out, why))?;
+    let fail = |e: image::ImageError| WriteError::new(out, e.to_string());
     let mut bytes = Vec::new();
     {
         let mut encoder = image::codecs::gif::GifEncoder::new_with_speed(&mut bytes, 10);
@@ -256,11 +323,15 @@ pub fn animate_to_file(
             .map_err(fail)?;
         let last = frames.len().saturating_sub(1);
         for (i, frame) in frames.iter().enumerate() {
-            let rgba: Vec<u8> = frame
-                .to_rgb8()
-                .chunks_exact(3)
-                .flat_map(|p| [p[0], p[1], p[2], 255])
-                .collect();
+            let mut rgba = Vec::new();
+            rgba.try_reserve_exact(frame.color.len() * 4)
+                .map_err(|_| WriteError::new(out, "out of memory for a frame of the GIF"))?;
+            rgba.extend(
+                frame
+                    .color
+                    .iter()
+                    .flat_map(|&c| crate::pipeline::target::unpack(c).into_iter().chain([255])),
+            );
             let image = image::RgbaImage::from_raw(frame.width, frame.height, rgba)
                 .expect("a frame's size matches its pixels");
             let ms = if i == last { 2000 } else { delay_ms };
@@ -335,24 +406,39 @@ pub fn render_all(
     settings: &Settings,
     dir: &Path,
 ) -> Result<Vec<PathBuf>, WriteError> {
-    std::fs::create_dir_all(dir).map_err(|e| WriteError {
-        path: dir.to_path_buf(),
-        reason: e.to_string(),
-    })?;
+    create_folder(dir)?;
     let mut written = Vec::new();
     let mut frames = Vec::new();
     for figure in Figure::FIGURES {
-        let (frame, _) = render(figure, mesh, settings, None);
+        let frame = frame_for(settings, dir)?;
+        let (frame, _, _) = render_into(figure, mesh, settings, None, frame);
         let path = dir.join(figure.figure_file());
-        write_png(&frame, &path)?;
+        write_image(&frame, &path)?;
         written.push(path);
         frames.push(frame);
     }
     let overview = figure_one(&frames).expect("seven figures of one size");
     let path = dir.join(OVERVIEW_FILE);
-    write_png(&overview, &path)?;
+    write_image(&overview, &path)?;
     written.push(path);
     Ok(written)
+}
+
+/// Creates the folder `dir` (and its parents) if missing; a file in its place
+/// is named as such rather than as the system's "File exists".
+pub fn create_folder(dir: &Path) -> Result<(), WriteError> {
+    if dir.exists() && !dir.is_dir() {
+        return Err(WriteError::new(dir, "not a folder"));
+    }
+    std::fs::create_dir_all(dir).map_err(|e| {
+        let why = match e.kind() {
+            std::io::ErrorKind::AlreadyExists | std::io::ErrorKind::NotADirectory => {
+                "a part of it is not a folder".to_string()
+            }
+            _ => e.to_string(),
+        };
+        WriteError::new(dir, why)
+    })
 }
 
 /// `ComputePolygonRows` for a polygon given as pixels, printed as the handout's
@@ -377,6 +463,15 @@ pub fn raytrace_to_file(
     out: &Path,
     runs: Option<usize>,
 ) -> Result<Option<Timing>, WriteError> {
+    // Too large an image is refused here, with what it needs, not aborted on.
+    // The frame (4 bytes a pixel), each pixel's hit (8) and the rows written (3).
+    reserve(
+        out,
+        settings.width,
+        settings.height,
+        15,
+        "ray-tracing and writing",
+    )?;
     let (camera, light) = (settings.camera(), settings.light());
     let mut traced = raytrace::raytrace(scene, &camera, &light, options);
     let timing = runs.map(|n| {
@@ -384,7 +479,7 @@ pub fn raytrace_to_file(
             traced = raytrace::raytrace(scene, &camera, &light, options)
         })
     });
-    write_png(&traced.frame, out)?;
+    write_image(&traced.frame, out)?;
     Ok(timing)
 }
 
@@ -418,14 +513,12 @@ pub fn report(
         report::Plan::full()
     };
     // Find an unwritable folder before the minute of measuring, not after it.
-    let fail = |e: std::io::Error| WriteError {
-        path: dir.to_path_buf(),
-        reason: e.to_string(),
-    };
-    std::fs::create_dir_all(dir).map_err(fail)?;
-    let probe = dir.join(format!(".rasterlab-write-check.{}", std::process::id()));
-    std::fs::write(&probe, b"").map_err(fail)?;
-    let _ = std::fs::remove_file(&probe);
+    create_folder(dir)?;
+    // Created exclusively under a random name, removed when dropped.
+    tempfile::Builder::new()
+        .prefix(".rasterlab-")
+        .tempfile_in(dir)
+        .map_err(|e| WriteError::new(dir, e.to_string()))?;
     let rows = report::measure_all(&plan, scene, pose, &mut progress);
     let size = report::conclusion_size(&plan);
     let options = report::measure_options(scene, pose, size, plan.runs, &mut progress);
@@ -437,11 +530,11 @@ pub fn report(
     text.push_str("\n![Error against time](error-vs-time.png)\n");
     write_text(&md, &text)?;
     write_text(&csv, &report::csv(&[rows.as_slice(), &options].concat()))?;
-    write_png(&report::plot(&rows, &plan), &png)?;
+    write_image(&report::plot(&rows, &plan), &png)?;
     let mut written = vec![md, csv, png];
     for (name, picture) in report::heat_maps(&plan, scene, pose) {
         let path = dir.join(name);
-        write_png(&picture, &path)?;
+        write_image(&picture, &path)?;
         written.push(path);
     }
     Ok(written)

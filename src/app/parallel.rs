@@ -68,6 +68,11 @@ impl Parallel {
         self.stats = stats;
     }
 
+    /// Whether the figure tests depth, so its frames need a depth buffer.
+    pub fn depth_test(&self) -> bool {
+        self.pipelines[0].depth_test()
+    }
+
     /// What the last frame did, summed over the bands.
     pub fn stats(&self) -> Stats {
         self.stats

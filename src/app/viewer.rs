@@ -4,7 +4,7 @@
 //! same way a person's key presses do.
 
 use super::controls::{self, action, pressed, Action, Controls, Key, MouseLook};
-use super::image_io::write_png;
+use super::image_io::write_image;
 use super::parallel::Parallel;
 use super::Settings;
 use crate::measure::figure::{Figure, Raster, StageName};
@@ -268,7 +268,7 @@ fn free_capture_path(view: Figure) -> PathBuf {
 }
 
 fn save(frame: &Frame, path: &Path) -> Result<(), String> {
-    write_png(frame, path).map_err(|e| e.to_string())?;
+    write_image(frame, path).map_err(|e| e.to_string())?;
     eprintln!("saved {}", path.display());
     Ok(())
 }

@@ -115,6 +115,55 @@ impl Frame {
     pub fn to_rgb8(&self) -> Vec<u8> {
         self.color.iter().flat_map(|&c| unpack(c)).collect()
     }
+
+    /// [`Frame::to_rgb8`], refused with the size it needs when that memory
+    /// cannot be had.
+    pub fn try_to_rgb8(&self) -> Result<Vec<u8>, String> {
+        let mut rgb = Vec::new();
+        let bytes = self.color.len() * 3;
+        rgb.try_reserve_exact(bytes).map_err(|_| {
+            format!(
+                "out of memory: the {}x{} image's 8-bit rows need {}",
+                self.width,
+                self.height,
+                megabytes(bytes)
+            )
+        })?;
+        rgb.extend(self.color.iter().flat_map(|&c| unpack(c)));
+        Ok(rgb)
+    }
+
+    /// A black `width` x `height` frame, with a depth buffer when `depth`,
+    /// refused with the size it needs when that memory cannot be had (a render
+    /// then fails with a message instead of aborting).
+    pub fn try_new(width: u32, height: u32, depth: bool) -> Result<Frame, String> {
+        let n = width as usize * height as usize;
+        let bytes = n * (4 + if depth { 4 } else { 0 });
+        let refuse = |_| {
+            format!(
+                "out of memory: a {width}x{height} image needs {} for its colour{} buffer",
+                megabytes(bytes),
+                if depth { " and depth" } else { "" }
+            )
+        };
+        let mut frame = Frame {
+            width,
+            height,
+            ..Frame::default()
+        };
+        frame.color.try_reserve_exact(n).map_err(refuse)?;
+        frame.color.resize(n, 0);
+        if depth {
+            frame.depth.try_reserve_exact(n).map_err(refuse)?;
+            frame.depth.resize(n, 0.0);
+        }
+        Ok(frame)
+    }
+}
+
+/// A byte count as people read it: "805 MB".
+pub fn megabytes(bytes: usize) -> String {
+    format!("{} MB", bytes.div_ceil(1_000_000))
 }
 
 /// `0x00RRGGBB` as `[r, g, b]`: the inverse of [`pack`]'s layout.

@@ -3,13 +3,14 @@
 //! chosen by a scene spec (`parse_scene`).
 
 pub mod cornell;
+pub mod input;
 pub mod obj;
 pub mod procedural;
 pub mod ray;
 pub mod texture;
 
 pub use cornell::{cornell_box, subdivide};
-pub use obj::{load_obj, write_obj};
+pub use obj::{load_obj, obj_text, read_obj};
 pub use procedural::{grid, sphere};
 
 use crate::pipeline::Mesh;

@@ -28,17 +28,25 @@
 //!   Points and lines (`f 1`, `f 1 2`, `l 1 2`) are skipped.
 
 use super::cornell::WHITE;
+use super::input::open_regular;
 use crate::pipeline::mesh::{face_normal, Face, Material, Mesh};
 use glam::{Vec2, Vec3};
 use std::cell::RefCell;
 use std::collections::HashMap;
 use std::fmt::Write as _;
-use std::fs::{self, File};
 use std::io::{self, BufRead, BufReader, Read};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// The largest model loaded; a larger one is refused before tobj stores it.
 pub const MAX_TRIANGLES: usize = 10_000_000;
+
+/// The most positions (and, each, texture coordinates and normals) a model may
+/// list: three for each of the most triangles, none shared.
+pub const MAX_VERTICES: usize = 3 * MAX_TRIANGLES;
+
+/// The longest line read: a line is held whole, so a file without newlines
+/// (`/dev/zero`, a binary file) must not be.
+pub const MAX_LINE_BYTES: usize = 1 << 20;
 
 /// The half turn about x between a file's axes and ours; its own inverse.
 fn flip(v: Vec3) -> Vec3 {
@@ -47,8 +55,15 @@ fn flip(v: Vec3) -> Vec3 {
 
 /// Reads an OBJ file (and the MTL files it names) into a mesh.
 pub fn load_obj(path: &Path) -> Result<Mesh, String> {
+    read_obj(path).map(|(mesh, _)| mesh)
+}
+
+/// [`load_obj`], with the warnings a reader should see: what the file asks for
+/// that is drawn otherwise (a material that is not defined, a colour outside
+/// [0, 1], a face with fewer than three corners, a `map_Kd` option not used).
+pub fn read_obj(path: &Path) -> Result<(Mesh, Vec<String>), String> {
     let fail = |why: String| format!("{}: {why}", path.display());
-    let file = File::open(path).map_err(|e| fail(format!("cannot open: {e}")))?;
+    let file = open_regular(path).map_err(fail)?;
     let mut reader = Lines::new(BufReader::new(file), Kind::Obj);
     let dir = path.parent().unwrap_or(Path::new(""));
     let mtl_error = RefCell::new(None);
@@ -68,19 +83,16 @@ pub fn load_obj(path: &Path) -> Result<Mesh, String> {
         use tobj::LoadError::*;
         match reader.stop.take() {
             Some(why) => fail(why),
-            // These are found when tobj gathers an object's faces, after reading
-            // on: the current line is not theirs.
+            // Found when tobj gathers an object's faces, after reading on: the
+            // current line is not theirs, the largest index's line is.
             None if matches!(
                 e,
-                FaceVertexOutOfBounds
-                    | FaceTexCoordOutOfBounds
-                    | FaceNormalOutOfBounds
-                    | FaceColorOutOfBounds
-                    | InvalidPolygon
+                FaceVertexOutOfBounds | FaceTexCoordOutOfBounds | FaceNormalOutOfBounds
             ) =>
             {
-                fail(e.to_string())
+                fail(reader.index_past_the_end().unwrap_or_else(|| e.to_string()))
             }
+            None if matches!(e, FaceColorOutOfBounds | InvalidPolygon) => fail(e.to_string()),
             None => fail(format!("line {}: {e}", reader.line)),
         }
     })?;
@@ -88,9 +100,89 @@ pub fn load_obj(path: &Path) -> Result<Mesh, String> {
         return Err(fail(why));
     }
     let materials = materials.unwrap_or_default();
-    let mut mesh = to_mesh(&models, &materials).map_err(fail)?;
-    load_diffuse_textures(&mut mesh, &materials, dir).map_err(fail)?;
-    Ok(mesh)
+    let maps: Vec<Option<TextureMap>> = materials
+        .iter()
+        .map(|m| m.diffuse_texture.as_deref().map(TextureMap::parse))
+        .collect();
+    let mut mesh = to_mesh(&models, &materials, &maps).map_err(fail)?;
+    load_diffuse_textures(&mut mesh, &materials, &maps, dir).map_err(fail)?;
+    let mut warnings = reader.warnings(&materials);
+    for (m, map) in materials.iter().zip(&maps) {
+        if let Some(kd) = m.diffuse {
+            if kd.iter().any(|c| !(0.0..=1.0).contains(c)) {
+                warnings.push(format!(
+                    "material {}: Kd {} {} {} is outside [0, 1]: clamped to it",
+                    m.name, kd[0], kd[1], kd[2]
+                ));
+            }
+        }
+        for option in map.iter().flat_map(|t| &t.ignored) {
+            warnings.push(format!(
+                "material {}: map_Kd option {option} is not supported: left out",
+                m.name
+            ));
+        }
+    }
+    Ok((mesh, warnings.into_iter().map(fail).collect()))
+}
+
+/// A `map_Kd` statement: its options, then the file name (which may hold
+/// spaces). `-s` scales and `-o` offsets the texture coordinates
+/// (`uv * s + o`); the other options of the MTL format are read past and named
+/// as not supported.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TextureMap {
+    pub file: String,
+    pub scale: Vec2,
+    pub offset: Vec2,
+    pub ignored: Vec<String>,
+}
+
+impl TextureMap {
+    pub fn parse(statement: &str) -> TextureMap {
+        let mut map = TextureMap {
+            file: String::new(),
+            scale: Vec2::ONE,
+            offset: Vec2::ZERO,
+            ignored: Vec::new(),
+        };
+        let mut words = statement.split_whitespace().peekable();
+        let mut rest = statement.trim_start();
+        while let Some(&word) = words.peek() {
+            // Options and their counts of values, by the MTL format.
+            let values = match word {
+                "-s" | "-o" | "-t" => 3,
+                "-mm" => 2,
+                "-blendu" | "-blendv" | "-bm" | "-boost" | "-cc" | "-clamp" | "-imfchan"
+                | "-texres" | "-type" => 1,
+                _ => break,
+            };
+            words.next();
+            let mut read = Vec::new();
+            while read.len() < values {
+                let Some(&next) = words.peek() else { break };
+                let number = next.parse::<f32>().ok().filter(|x| x.is_finite());
+                // -s, -o and -t take one to three numbers; the others take words.
+                if values == 3 && number.is_none() {
+                    break;
+                }
+                read.push((next, number));
+                words.next();
+            }
+            let number = |i: usize, default: f32| read.get(i).and_then(|r| r.1).unwrap_or(default);
+            match word {
+                "-s" => map.scale = Vec2::new(number(0, 1.0), number(1, 1.0)),
+                "-o" => map.offset = Vec2::new(number(0, 0.0), number(1, 0.0)),
+                _ => map.ignored.push(word.to_string()),
+            }
+            // What is left of the statement after this option and its values.
+            for w in std::iter::once(word).chain(read.iter().map(|r| r.0)) {
+                rest = rest[rest.find(w).map_or(0, |i| i + w.len())..].trim_start();
+            }
+        }
+        map.file = rest.trim_end().to_string();
+        map
+    }
 }
 
 /// Each material's `map_Kd` image, read relative to the OBJ file's folder, as
@@ -98,13 +190,18 @@ pub fn load_obj(path: &Path) -> Result<Mesh, String> {
 fn load_diffuse_textures(
     mesh: &mut Mesh,
     materials: &[tobj::Material],
+    maps: &[Option<TextureMap>],
     dir: &Path,
 ) -> Result<(), String> {
     let mut loaded: HashMap<&str, u32> = HashMap::new();
-    for (i, m) in materials.iter().enumerate() {
-        let Some(name) = m.diffuse_texture.as_deref() else {
+    for (i, (m, map)) in materials.iter().zip(maps).enumerate() {
+        let Some(map) = map else {
             continue;
         };
+        let name = map.file.as_str();
+        if name.is_empty() {
+            return Err(format!("material {}: map_Kd names no file", m.name));
+        }
         let index = match loaded.get(name) {
             Some(&index) => index,
             None => {
@@ -124,7 +221,7 @@ fn load_diffuse_textures(
 /// Reads one MTL file; the error names it and, where known, the line.
 fn load_mtl(path: &Path) -> Result<(Vec<tobj::Material>, HashMap<String, usize>), String> {
     let fail = |why: String| format!("material library {}: {why}", path.display());
-    let file = File::open(path).map_err(|e| fail(format!("cannot open: {e}")))?;
+    let file = open_regular(path).map_err(fail)?;
     let mut reader = Lines::new(BufReader::new(file), Kind::Mtl);
     tobj::load_mtl_buf(&mut reader).map_err(|e| {
         fail(
@@ -138,7 +235,11 @@ fn load_mtl(path: &Path) -> Result<(Vec<tobj::Material>, HashMap<String, usize>)
 
 /// Our mesh from tobj's models: the map to our axes, one material per MTL material
 /// (plus the default grey when a face needs it).
-fn to_mesh(models: &[tobj::Model], materials: &[tobj::Material]) -> Result<Mesh, String> {
+fn to_mesh(
+    models: &[tobj::Model],
+    materials: &[tobj::Material],
+    maps: &[Option<TextureMap>],
+) -> Result<Mesh, String> {
     let mut mesh = Mesh {
         materials: materials
             .iter()
@@ -170,8 +271,17 @@ fn to_mesh(models: &[tobj::Model], materials: &[tobj::Material]) -> Result<Mesh,
             mesh.normals.extend(vec3s(&m.normals));
         }
         if all_uvs {
-            mesh.uvs
-                .extend(m.texcoords.chunks_exact(2).map(|t| Vec2::new(t[0], t[1])));
+            // A map_Kd -s or -o moves the coordinates of its material's faces;
+            // tobj gives each material its own vertices.
+            let (scale, offset) = match m.material_id.and_then(|i| maps.get(i)?.as_ref()) {
+                Some(map) => (map.scale, map.offset),
+                None => (Vec2::ONE, Vec2::ZERO),
+            };
+            mesh.uvs.extend(
+                m.texcoords
+                    .chunks_exact(2)
+                    .map(|t| Vec2::new(t[0], t[1]) * scale + offset),
+            );
         }
         let material = match m.material_id {
             Some(i) if i < materials.len() => i as u32,
@@ -228,14 +338,12 @@ fn to_mesh(models: &[tobj::Model], materials: &[tobj::Material]) -> Result<Mesh,
     Ok(mesh)
 }
 
-/// Writes `mesh` as an OBJ file at `path` and its materials as an MTL file beside
-/// it (same name, `.mtl`), by the module's rules: loading them gives back the same
-/// positions, normals, texture coordinates, faces and colours, bit for bit, for a
-/// mesh whose vertices are numbered in order of first use as the file lists them
-/// and not shared between materials (the box, `sphere`, `grid`). Each file is
-/// written whole to a temporary file and renamed into place.
-pub fn write_obj(mesh: &Mesh, path: &Path) -> Result<(), String> {
-    let fail = |why: String| format!("cannot write {}: {why}", path.display());
+/// `mesh` as the text of an OBJ file and of the MTL file `mtl_name` it names, by
+/// the module's rules: loading them gives back the same positions, normals,
+/// texture coordinates, faces and colours, bit for bit, for a mesh whose vertices
+/// are numbered in order of first use as the file lists them and not shared
+/// between materials (the box, `sphere`, `grid`). Returns (OBJ, MTL).
+pub fn obj_text(mesh: &Mesh, mtl_name: &str) -> Result<(String, String), String> {
     let n = mesh.positions.len();
     let consistent = (mesh.normals.is_empty() || mesh.normals.len() == n)
         && (mesh.uvs.is_empty() || mesh.uvs.len() == n)
@@ -244,9 +352,7 @@ pub fn write_obj(mesh: &Mesh, path: &Path) -> Result<(), String> {
                 && (f.material as usize) < mesh.materials.len()
         });
     if !consistent {
-        return Err(fail(
-            "the mesh refers to vertices or materials it does not have".into(),
-        ));
+        return Err("the mesh refers to vertices or materials it does not have".into());
     }
     let finite = mesh
         .positions
@@ -256,14 +362,8 @@ pub fn write_obj(mesh: &Mesh, path: &Path) -> Result<(), String> {
         && mesh.uvs.iter().all(|t| t.is_finite())
         && mesh.materials.iter().all(|m| m.color.is_finite());
     if !finite {
-        return Err(fail("a coordinate or colour is NaN or infinite".into()));
+        return Err("a coordinate or colour is NaN or infinite".into());
     }
-    let mtl_path = path.with_extension("mtl");
-    let mtl_name = mtl_path
-        .file_name()
-        .ok_or_else(|| fail("not a file name".into()))?
-        .to_string_lossy();
-
     // `{}` prints an f32 with the fewest digits that read back as the same f32.
     let mut mtl = String::from("# rasterlab: the materials of the model beside it\n");
     for (i, m) in mesh.materials.iter().enumerate() {
@@ -300,21 +400,7 @@ pub fn write_obj(mesh: &Mesh, path: &Path) -> Result<(), String> {
         }
         obj.push('\n');
     }
-    write_whole(&mtl_path, &mtl)?;
-    write_whole(path, &obj)
-}
-
-/// Writes `text` to a temporary file beside `path` and renames it into place, so
-/// that no reader ever sees half a file.
-fn write_whole(path: &Path, text: &str) -> Result<(), String> {
-    let mut tmp = path.as_os_str().to_owned();
-    tmp.push(format!(".{}.tmp", std::process::id()));
-    let tmp = PathBuf::from(tmp);
-    let result = fs::write(&tmp, text).and_then(|()| fs::rename(&tmp, path));
-    if result.is_err() {
-        let _ = fs::remove_file(&tmp);
-    }
-    result.map_err(|e| format!("cannot write {}: {e}", path.display()))
+    Ok((obj, mtl))
 }
 
 #[derive(Clone, Copy, PartialEq)]
@@ -338,7 +424,16 @@ struct Lines<R> {
     counts: [usize; 3],
     triangles: usize,
     stop: Option<String>,
+    /// The largest positive index of each kind, with its line.
+    largest: [(u64, usize); 3],
+    /// Faces with fewer than three corners: the first one's line, and how many.
+    short_faces: (usize, usize),
+    /// Each material name `usemtl` gives (the first [`MAX_NAMES`]), with its first line.
+    usemtl: Vec<(String, usize)>,
 }
+
+/// How many material names are remembered for the warnings.
+const MAX_NAMES: usize = 256;
 
 impl<R: BufRead> Lines<R> {
     fn new(inner: R, kind: Kind) -> Self {
@@ -349,17 +444,87 @@ impl<R: BufRead> Lines<R> {
             counts: [0; 3],
             triangles: 0,
             stop: None,
+            largest: [(0, 0); 3],
+            short_faces: (0, 0),
+            usemtl: Vec::new(),
         }
+    }
+
+    /// Which line has an index past the end of its list, and what it is.
+    fn index_past_the_end(&self) -> Option<String> {
+        let kinds = ["positions", "texture coordinates", "normals"];
+        (0..3).find_map(|k| {
+            let (index, line) = self.largest[k];
+            (index > self.counts[k] as u64).then(|| {
+                format!(
+                    "line {line}: index {index} is past the end: the file has {} {}",
+                    self.counts[k], kinds[k]
+                )
+            })
+        })
+    }
+
+    /// The warnings gathered while reading, once the materials are known.
+    fn warnings(&self, materials: &[tobj::Material]) -> Vec<String> {
+        let mut out = Vec::new();
+        for (name, line) in &self.usemtl {
+            if !materials.iter().any(|m| &m.name == name) {
+                out.push(format!(
+                    "line {line}: usemtl {name}: no material of that name in the material libraries: its faces are grey"
+                ));
+            }
+        }
+        let (line, n) = self.short_faces;
+        if n > 0 {
+            let more = match n {
+                1 => String::new(),
+                n => format!(" (and {} more such faces)", n - 1),
+            };
+            out.push(format!(
+                "line {line}: a face needs at least three corners: left out{more}"
+            ));
+        }
+        out
     }
 
     fn check(&mut self, line: &str) -> Result<(), String> {
         let mut words = line.split_whitespace();
         let first = words.next().unwrap_or("");
         match (self.kind, first) {
-            (Kind::Obj, "f" | "l") => return self.check_face(words),
-            (Kind::Obj, "v") => self.counts[0] += 1,
-            (Kind::Obj, "vt") => self.counts[1] += 1,
-            (Kind::Obj, "vn") => self.counts[2] += 1,
+            (Kind::Obj, "f") => {
+                let corners = words.clone().count();
+                if corners < 3 {
+                    if self.short_faces.1 == 0 {
+                        self.short_faces.0 = self.line;
+                    }
+                    self.short_faces.1 += 1;
+                }
+                return self.check_face(words);
+            }
+            (Kind::Obj, "l") => return self.check_face(words),
+            (Kind::Obj, "usemtl") => {
+                let name = line
+                    .trim()
+                    .split_once(char::is_whitespace)
+                    .map_or("", |n| n.1);
+                let name = name.trim();
+                if self.usemtl.len() < MAX_NAMES && !self.usemtl.iter().any(|u| u.0 == name) {
+                    self.usemtl.push((name.to_string(), self.line));
+                }
+                return Ok(());
+            }
+            (Kind::Obj, "v" | "vt" | "vn") => {
+                let k = ["v", "vt", "vn"]
+                    .iter()
+                    .position(|&w| w == first)
+                    .unwrap_or(0);
+                self.counts[k] += 1;
+                if self.counts[k] > MAX_VERTICES {
+                    return Err(format!(
+                        "more than {MAX_VERTICES} '{first}' lines: the model is too large to load"
+                    ));
+                }
+            }
             (Kind::Mtl, "Ka" | "Kd" | "Ks" | "Ke") if words.clone().count() < 3 => {
                 return Err(format!("{first} needs three numbers"))
             }
@@ -388,6 +553,9 @@ impl<R: BufRead> Lines<R> {
                 {
                     return Err(format!("index {i} is out of range"));
                 }
+                if i > 0 && i as u64 > self.largest[k].0 {
+                    self.largest[k] = (i as u64, self.line);
+                }
             }
         }
         self.triangles += n.max(2) - 2;
@@ -415,18 +583,36 @@ impl<R: BufRead> BufRead for Lines<R> {
         self.inner.consume(amount)
     }
 
-    /// tobj reads with `lines()`, which reads each line through this.
+    /// tobj reads with `lines()`, which reads each line through this: at most
+    /// [`MAX_LINE_BYTES`] of it.
     fn read_line(&mut self, text: &mut String) -> io::Result<usize> {
-        let n = self.inner.read_line(text).inspect_err(|e| {
-            self.stop = Some(format!("line {}: {e}", self.line + 1));
-        })?;
-        if n > 0 {
-            self.line += 1;
-            if let Err(why) = self.check(text) {
-                self.stop = Some(format!("line {}: {why}", self.line));
+        let mut bytes = Vec::new();
+        let read = (&mut self.inner)
+            .take(MAX_LINE_BYTES as u64 + 1)
+            .read_until(b'\n', &mut bytes);
+        let number = self.line + 1;
+        let line = match read {
+            Err(e) => Err(e.to_string()),
+            Ok(n) if n > MAX_LINE_BYTES => Err(format!(
+                "longer than {MAX_LINE_BYTES} bytes: not a model file, or a broken one"
+            )),
+            Ok(_) => String::from_utf8(bytes).map_err(|_| "not UTF-8 text".to_string()),
+        };
+        let line = match line {
+            Ok(line) => line,
+            Err(why) => {
+                self.stop = Some(format!("line {number}: {why}"));
+                return Err(io::Error::other(why));
+            }
+        };
+        if !line.is_empty() {
+            self.line = number;
+            if let Err(why) = self.check(&line) {
+                self.stop = Some(format!("line {number}: {why}"));
                 return Err(io::Error::other(why));
             }
         }
-        Ok(n)
+        text.push_str(&line);
+        Ok(line.len())
     }
 }

@@ -88,7 +88,7 @@ pub fn grid(n: usize) -> Mesh {
 /// the vertex's position, normal and texture coordinate.
 ///
 /// A vertex is created when a face first uses it, visiting the corners in the order
-/// (v0, v2, v1): that is the order a file written by `write_obj` lists them in, and
+/// (v0, v2, v1): that is the order a file written by `obj_text` lists them in, and
 /// tobj numbers the vertices it loads in order of first use, so these meshes come
 /// back from a written OBJ file with the same numbering.
 fn build(

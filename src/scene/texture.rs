@@ -51,15 +51,18 @@ pub fn checker(color: Vec3) -> Texture {
     Texture::new(n, n, texels).expect("a non-empty square")
 }
 
+/// The longest side of a texture read from a file.
+pub const MAX_TEXTURE_SIDE: u32 = 16384;
+
 /// The image at `path` as a texture of linear reflectances (each 8-bit channel
 /// over 255). The error is one line naming the file.
 pub fn load_texture(path: &Path) -> Result<Texture, String> {
     let shown = path.display();
-    let image = image::ImageReader::open(path)
-        .map_err(|e| format!("texture {shown}: {e}"))?
-        .with_guessed_format()
-        .map_err(|e| format!("texture {shown}: {e}"))?
-        .decode()
+    let limit = super::input::ImageLimit {
+        max_side: MAX_TEXTURE_SIDE,
+        what: "a texture",
+    };
+    let image = super::input::read_image(path, limit)
         .map_err(|e| format!("texture {shown}: {e}"))?
         .to_rgb8();
     let (width, height) = image.dimensions();

@@ -1,0 +1,131 @@
+//! Reading files that come from strangers: a model, its materials, a texture, a
+//! screenshot or a printout. What is read is bounded before it is read:
+//!
+//! - Only regular files are read. A FIFO, a device or a socket is refused with
+//!   its kind named; it is opened without blocking (`O_NONBLOCK`), so a FIFO with
+//!   no writer is refused at once instead of waited on.
+//! - Text is read up to a limit in bytes, and refused past it.
+//! - An image's size is read from its header first, and refused before decoding
+//!   when it is larger than the caller allows; decoding then runs under the
+//!   `image` crate's limits, so a lying header cannot allocate more.
+
+use std::fs::{File, OpenOptions};
+use std::io::{BufReader, Read};
+use std::os::unix::fs::{FileTypeExt, OpenOptionsExt};
+use std::path::Path;
+
+/// Opens `path` for reading if it is a regular file; the error says why not (no
+/// path in it: the caller names the file).
+pub fn open_regular(path: &Path) -> Result<File, String> {
+    let file = OpenOptions::new()
+        .read(true)
+        .custom_flags(libc::O_NONBLOCK)
+        .open(path)
+        .map_err(|e| format!("cannot open: {e}"))?;
+    let kind = file
+        .metadata()
+        .map_err(|e| format!("cannot open: {e}"))?
+        .file_type();
+    let what = if kind.is_file() {
+        return Ok(file);
+    } else if kind.is_dir() {
+        "a folder"
+    } else if kind.is_fifo() {
+        "a FIFO"
+    } else if kind.is_char_device() || kind.is_block_device() {
+        "a device"
+    } else if kind.is_socket() {
+        "a socket"
+    } else {
+        "not a file"
+    };
+    Err(format!("{what}, not a regular file: refused"))
+}
+
+/// The whole of `reader` as UTF-8 text, refused past `max_bytes`.
+pub fn read_text_bounded(reader: impl Read, max_bytes: u64) -> Result<String, String> {
+    let mut bytes = Vec::new();
+    reader
+        .take(max_bytes + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| format!("cannot read: {e}"))?;
+    if bytes.len() as u64 > max_bytes {
+        return Err(format!("longer than {max_bytes} bytes: refused"));
+    }
+    String::from_utf8(bytes).map_err(|_| "not UTF-8 text".into())
+}
+
+/// The text file at `path`, refused past `max_bytes`.
+pub fn read_text_file(path: &Path, max_bytes: u64) -> Result<String, String> {
+    read_text_bounded(open_regular(path)?, max_bytes)
+}
+
+/// How large an image [`read_image`] may decode.
+#[derive(Clone, Copy, Debug)]
+pub struct ImageLimit {
+    /// The longest side, in pixels.
+    pub max_side: u32,
+    /// What to say the image is, in the refusal ("a texture", "a screenshot").
+    pub what: &'static str,
+}
+
+/// The image at `path` (PNG, BMP or GIF, by its content), refused from its
+/// header when a side is longer than `limit` allows.
+pub fn read_image(path: &Path, limit: ImageLimit) -> Result<image::DynamicImage, String> {
+    let (w, h) = image_size(path)?;
+    if w > limit.max_side || h > limit.max_side {
+        return Err(format!(
+            "{w}x{h} is too large for {} (at most {} pixels a side)",
+            limit.what, limit.max_side
+        ));
+    }
+    let mut limits = image::Limits::default();
+    limits.max_image_width = Some(limit.max_side);
+    limits.max_image_height = Some(limit.max_side);
+    // Room for the decoded image at 16 bits a channel with alpha, and no more.
+    limits.max_alloc = Some(w as u64 * h as u64 * 8 + (1 << 20));
+    let mut reader = image::ImageReader::new(BufReader::new(open_regular(path)?))
+        .with_guessed_format()
+        .map_err(|e| format!("cannot read: {e}"))?;
+    reader.limits(limits);
+    reader.decode().map_err(|e| e.to_string())
+}
+
+/// An image's width and height, from its header alone.
+pub fn image_size(path: &Path) -> Result<(u32, u32), String> {
+    image::ImageReader::new(BufReader::new(open_regular(path)?))
+        .with_guessed_format()
+        .map_err(|e| format!("cannot read: {e}"))?
+        .into_dimensions()
+        .map_err(|e| e.to_string())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn text_past_its_bound_is_refused() {
+        assert_eq!(read_text_bounded(&b"abcd"[..], 4).unwrap(), "abcd");
+        assert_eq!(
+            read_text_bounded(&b"abcde"[..], 4).unwrap_err(),
+            "longer than 4 bytes: refused"
+        );
+        assert_eq!(
+            read_text_bounded(&[0xff, 0xfe][..], 4).unwrap_err(),
+            "not UTF-8 text"
+        );
+    }
+
+    #[test]
+    fn devices_and_folders_are_refused_by_kind() {
+        assert_eq!(
+            open_regular(Path::new("/dev/zero")).unwrap_err(),
+            "a device, not a regular file: refused"
+        );
+        assert_eq!(
+            open_regular(Path::new("/")).unwrap_err(),
+            "a folder, not a regular file: refused"
+        );
+    }
+}

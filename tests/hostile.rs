@@ -1,0 +1,391 @@
+//! Input from strangers and shared folders (issue #18): planted links, special
+//! files, files without end, sizes beyond memory, and messages that say what is
+//! wrong. Each case is refused with one line, or drawn, never waited on or
+//! aborted.
+
+mod common;
+use common::temp_dir;
+use std::fs;
+use std::os::unix::fs::PermissionsExt;
+use std::path::Path;
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+fn bin() -> &'static str {
+    env!("CARGO_BIN_EXE_rasterlab")
+}
+
+fn err(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Runs the binary with `args`, killed after 20 s: a hang is a failure here.
+fn run(args: &[&str]) -> Output {
+    run_in(None, args)
+}
+
+fn run_in(dir: Option<&Path>, args: &[&str]) -> Output {
+    let mut cmd = Command::new(bin());
+    cmd.args(args)
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped());
+    if let Some(d) = dir {
+        cmd.current_dir(d);
+    }
+    let mut child = cmd.spawn().unwrap();
+    let start = Instant::now();
+    while child.try_wait().unwrap().is_none() {
+        if start.elapsed() > Duration::from_secs(20) {
+            child.kill().unwrap();
+            panic!("{args:?} still running after 20 s");
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    child.wait_with_output().unwrap()
+}
+
+/// A failure with exit code `code` and one line that contains `needle`.
+fn refused(o: &Output, code: i32, needle: &str) {
+    let e = err(o);
+    assert_eq!(o.status.code(), Some(code), "{e}");
+    assert_eq!(e.lines().count(), 1, "{e}");
+    assert!(e.contains(needle), "expected '{needle}' in: {e}");
+}
+
+fn is_root() -> bool {
+    Command::new("id").arg("-u").output().unwrap().stdout == b"0\n"
+}
+
+/// Whether `runuser -u nobody` can run the binary (root, runuser, a reachable path).
+fn nobody_can_run() -> bool {
+    is_root()
+        && Command::new("runuser")
+            .args(["-u", "nobody", "--", bin(), "--version"])
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .status()
+            .is_ok_and(|s| s.success())
+}
+
+/// The last process id the kernel handed out.
+fn last_pid() -> u32 {
+    fs::read_to_string("/proc/sys/kernel/ns_last_pid")
+        .unwrap()
+        .trim()
+        .parse()
+        .unwrap()
+}
+
+/// Plants, as `nobody` where the test runs as root (the attacker is another
+/// user), links named as the old temporary files of `names` would be for the
+/// next 400 process ids, all pointing at `victim`.
+fn plant_links(dir: &Path, names: &[&str], victim: &Path) {
+    let next = last_pid() + 1;
+    let mut script = String::new();
+    for pid in next..next + 400 {
+        for name in names {
+            script += &format!(
+                "ln -s {} {}/.{name}.{pid}.tmp; ln -s {} {}/{name}.{pid}.tmp\n",
+                victim.display(),
+                dir.display(),
+                victim.display(),
+                dir.display()
+            );
+        }
+    }
+    // The script goes in on standard input: it is longer than one argument may be.
+    let mut cmd = if nobody_can_run() {
+        let mut c = Command::new("runuser");
+        c.args(["-u", "nobody", "--", "sh", "-s"]);
+        c
+    } else {
+        let mut c = Command::new("sh");
+        c.arg("-s");
+        c
+    };
+    let mut child = cmd.stdin(Stdio::piped()).spawn().unwrap();
+    use std::io::Write;
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(script.as_bytes())
+        .unwrap();
+    assert!(child.wait().unwrap().success());
+}
+
+#[test]
+fn links_planted_for_the_next_process_ids_are_never_written_through() {
+    let root = temp_dir("planted");
+    // A folder anyone may write to, without the sticky bit: the attack's ground.
+    let shared = root.join("shared");
+    fs::create_dir(&shared).unwrap();
+    fs::set_permissions(&shared, fs::Permissions::from_mode(0o777)).unwrap();
+    let victim = root.join("victim");
+    fs::write(&victim, b"precious").unwrap();
+    fs::set_permissions(&victim, fs::Permissions::from_mode(0o644)).unwrap();
+    let figures = shared.join("figures");
+    let report = shared.join("report");
+    fs::create_dir(&figures).unwrap();
+    fs::create_dir(&report).unwrap();
+    for d in [&figures, &report] {
+        fs::set_permissions(d, fs::Permissions::from_mode(0o777)).unwrap();
+    }
+    plant_links(&shared, &["out.png", "d.obj", "d.mtl"], &victim);
+    plant_links(&figures, &["fig2-points.png", "fig1-overview.png"], &victim);
+    plant_links(&report, &["report.md", "report.csv"], &victim);
+    let out = shared.join("out.png");
+    let obj = shared.join("d.obj");
+    let cases: [&[&str]; 4] = [
+        &["depth", "--size", "8x6", "-o", out.to_str().unwrap()],
+        &["export", "-o", obj.to_str().unwrap()],
+        &["all", "--size", "8x6", "--out", figures.to_str().unwrap()],
+        &["report", "--quick", "--out", report.to_str().unwrap()],
+    ];
+    for args in cases {
+        let o = run(args);
+        assert!(o.status.success(), "{args:?}: {}", err(&o));
+        assert_eq!(fs::read(&victim).unwrap(), b"precious", "{args:?}");
+    }
+    for written in [
+        out,
+        obj,
+        shared.join("d.mtl"),
+        figures.join("fig2-points.png"),
+        figures.join("fig1-overview.png"),
+        report.join("report.md"),
+    ] {
+        let m = fs::symlink_metadata(&written).unwrap();
+        assert!(
+            m.file_type().is_file(),
+            "{} is not a file",
+            written.display()
+        );
+    }
+    // No temporary file is left behind: only the planted links, and what was written.
+    let left: Vec<_> = fs::read_dir(&shared)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| !fs::symlink_metadata(p).unwrap().file_type().is_symlink())
+        .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+        .collect();
+    let mut left = left;
+    left.sort();
+    assert_eq!(left, ["d.mtl", "d.obj", "figures", "out.png", "report"]);
+}
+
+#[test]
+fn a_long_output_name_is_written() {
+    let dir = temp_dir("long-name");
+    // 250 bytes: legal on every Linux file system; the temporary name is short.
+    let name = format!("{}.png", "a".repeat(246));
+    let o = run_in(Some(&dir), &["points", "--size", "8x6", "-o", &name]);
+    assert!(o.status.success(), "{}", err(&o));
+    assert!(dir.join(&name).is_file());
+}
+
+#[test]
+fn a_normal_user_gets_a_clean_refusal_in_a_folder_it_cannot_write() {
+    if !nobody_can_run() {
+        eprintln!("skipped: not root, no runuser, or nobody cannot reach the binary");
+        return;
+    }
+    let dir = temp_dir("nobody-closed");
+    fs::set_permissions(&*dir, fs::Permissions::from_mode(0o755)).unwrap();
+    let out = dir.join("x.obj");
+    let o = Command::new("runuser")
+        .args([
+            "-u",
+            "nobody",
+            "--",
+            bin(),
+            "export",
+            "-o",
+            out.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    refused(&o, 1, "Permission denied");
+    assert!(fs::read_dir(&*dir).unwrap().next().is_none());
+}
+
+/// A FIFO that nobody writes to, named `name` in `dir`.
+fn fifo(dir: &Path, name: &str) {
+    let path = dir.join(name);
+    assert!(Command::new("mkfifo")
+        .arg(&path)
+        .status()
+        .unwrap()
+        .success());
+}
+
+#[test]
+fn fifos_are_refused_at_once_not_waited_on() {
+    let dir = temp_dir("fifos");
+    fifo(&dir, "model.obj");
+    fifo(&dir, "tiles.png");
+    fifo(&dir, "rows.txt");
+    fifo(&dir, "shot.png");
+    // A model whose material library, and one whose texture, is a FIFO.
+    fifo(&dir, "lib.mtl");
+    fs::write(
+        dir.join("a.obj"),
+        "mtllib lib.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+    )
+    .unwrap();
+    fs::write(dir.join("b.mtl"), "newmtl m\nKd 1 1 1\nmap_Kd tiles.png\n").unwrap();
+    fs::write(
+        dir.join("b.obj"),
+        "mtllib b.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl m\nf 1/1 2/2 3/3\n",
+    )
+    .unwrap();
+    let cases: [(&[&str], &str); 6] = [
+        (
+            &["depth", "--scene", "model.obj", "-o", "x.png"],
+            "model.obj: a FIFO",
+        ),
+        (
+            &["pixel-light", "--texture", "tiles.png", "-o", "x.png"],
+            "a FIFO",
+        ),
+        (
+            &["depth", "--scene", "a.obj", "-o", "x.png"],
+            "lib.mtl: a FIFO",
+        ),
+        (
+            &["pixel-light", "--scene", "b.obj", "-o", "x.png"],
+            "a FIFO",
+        ),
+        (&["check", "shot.png"], "a FIFO"),
+        (
+            &["check", "rows", "rows.txt", "10,5", "5,10", "15,15"],
+            "a FIFO",
+        ),
+    ];
+    for (args, needle) in cases {
+        let o = run_in(Some(&dir), args);
+        refused(&o, 1, needle);
+        assert!(!dir.join("x.png").exists());
+    }
+}
+
+#[test]
+fn devices_and_files_without_newlines_are_refused() {
+    let dir = temp_dir("endless");
+    std::os::unix::fs::symlink("/dev/zero", dir.join("zero.obj")).unwrap();
+    let o = run_in(Some(&dir), &["depth", "--scene", "zero.obj", "-o", "x.png"]);
+    refused(&o, 1, "zero.obj: a device, not a regular file");
+    // 3 MB without a newline: refused at the line's bound, not held whole.
+    fs::write(dir.join("long.obj"), vec![b'v'; 3 << 20]).unwrap();
+    let o = run_in(Some(&dir), &["depth", "--scene", "long.obj", "-o", "x.png"]);
+    refused(&o, 1, "long.obj: line 1: longer than 1048576 bytes");
+    std::os::unix::fs::symlink("/dev/zero", dir.join("zero.txt")).unwrap();
+    let o = run_in(
+        Some(&dir),
+        &["check", "rows", "zero.txt", "10,5", "5,10", "15,15"],
+    );
+    refused(&o, 1, "cannot read zero.txt: a device");
+}
+
+/// `args` run under an address-space limit of 3 GB (`ulimit -v`).
+fn run_in_3gb(dir: &Path, args: &str) -> Output {
+    Command::new("sh")
+        .current_dir(dir)
+        .args(["-c", &format!("ulimit -v 3000000 && exec {} {args}", bin())])
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn frames_larger_than_memory_are_refused_not_aborted() {
+    let dir = temp_dir("memory");
+    for args in [
+        "depth --size 16384x16384 -o big.png",
+        "animate depth --size 16384x16384 -o big.gif",
+        "raytrace --flat --size 16384x16384 -o big.png",
+    ] {
+        let o = run_in_3gb(&dir, args);
+        refused(&o, 1, "out of memory");
+        assert!(err(&o).contains(" MB"), "{}", err(&o));
+        assert!(fs::read_dir(&*dir).unwrap().next().is_none(), "{args}");
+    }
+}
+
+/// A PNG whose header says `w` x `h` (and whose pixels are missing).
+fn png_header(path: &Path, w: u32, h: u32) {
+    let mut bytes = b"\x89PNG\r\n\x1a\n".to_vec();
+    let mut ihdr = b"IHDR".to_vec();
+    ihdr.extend(w.to_be_bytes());
+    ihdr.extend(h.to_be_bytes());
+    ihdr.extend([8, 2, 0, 0, 0]);
+    bytes.extend(13u32.to_be_bytes());
+    bytes.extend(&ihdr);
+    bytes.extend(crc32(&ihdr).to_be_bytes());
+    // An IDAT chunk (empty zlib data) ends the header for the decoder.
+    let idat = [b"IDAT".as_slice(), &[0x78, 0x9c, 0x03, 0, 0, 0, 0, 1]].concat();
+    bytes.extend(8u32.to_be_bytes());
+    bytes.extend(&idat);
+    bytes.extend(crc32(&idat).to_be_bytes());
+    bytes.extend([0, 0, 0, 0]);
+    bytes.extend(b"IEND");
+    bytes.extend(crc32(b"IEND").to_be_bytes());
+    fs::write(path, bytes).unwrap();
+}
+
+fn crc32(data: &[u8]) -> u32 {
+    let mut c = !0u32;
+    for &b in data {
+        c ^= b as u32;
+        for _ in 0..8 {
+            c = if c & 1 == 1 {
+                0xedb8_8320 ^ (c >> 1)
+            } else {
+                c >> 1
+            };
+        }
+    }
+    !c
+}
+
+#[test]
+fn huge_images_are_refused_from_their_header() {
+    let dir = temp_dir("huge-images");
+    png_header(&dir.join("shot.png"), 20000, 20000);
+    png_header(&dir.join("wide.png"), 12000, 12000);
+    png_header(&dir.join("tiles.png"), 70000, 10);
+    let o = run_in_3gb(&dir, "check shot.png");
+    refused(
+        &o,
+        1,
+        "20000x20000 is too large for a screenshot of the lab (at most 4096",
+    );
+    let o = run_in_3gb(&dir, "check wide.png");
+    refused(&o, 1, "12000x12000 is too large");
+    let o = run_in_3gb(&dir, "pixel-light --texture tiles.png -o x.png");
+    refused(&o, 1, "70000x10 is too large for a texture (at most 16384");
+}
+
+#[test]
+fn export_checks_both_files_before_writing_either() {
+    let dir = temp_dir("export-both");
+    fs::create_dir(dir.join("d.obj")).unwrap();
+    let o = run_in(Some(&dir), &["export", "-o", "d.obj"]);
+    refused(&o, 1, "d.obj: it is a folder");
+    assert!(!dir.join("d.mtl").exists());
+    // An existing MTL is not overwritten when the OBJ cannot be written.
+    fs::write(dir.join("d.mtl"), "mine").unwrap();
+    let o = run_in(Some(&dir), &["export", "-o", "d.obj"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(fs::read_to_string(dir.join("d.mtl")).unwrap(), "mine");
+}
+
+#[test]
+fn a_file_where_a_folder_goes_is_named_so() {
+    let dir = temp_dir("not-a-folder");
+    fs::write(dir.join("f"), "").unwrap();
+    let o = run_in(Some(&dir), &["all", "--out", "f"]);
+    refused(&o, 1, "cannot write f: not a folder");
+    let o = run_in(Some(&dir), &["check", "--out", "f", "f"]);
+    assert_eq!(o.status.code(), Some(1), "{}", err(&o));
+}
