@@ -104,7 +104,7 @@ struct SceneArgs {
           allow_hyphen_values = true)]
     size: (u32, u32),
     /// Focal length f in pixels (eq. 1 to 4).
-    #[arg(long, value_name = "F", default_value = "500", value_parser = parse::positive,
+    #[arg(long, value_name = "F", default_value = "500", value_parser = parse::focal,
           allow_hyphen_values = true)]
     focal: f32,
     /// Camera position C (eq. 5) in world space; y points down [default: 0,0,-3.001
@@ -115,26 +115,26 @@ struct SceneArgs {
     #[arg(long, value_name = "DEG", default_value = "0", value_parser = parse::finite,
           allow_hyphen_values = true)]
     yaw: f32,
-    /// Tilt, in degrees; positive looks up.
-    #[arg(long, value_name = "DEG", default_value = "0", value_parser = parse::finite,
-          allow_hyphen_values = true)]
-    pitch: f32,
+    /// Tilt, in degrees; positive looks up [default: 0; a grid is looked down on
+    /// from above].
+    #[arg(long, value_name = "DEG", value_parser = parse::finite, allow_hyphen_values = true)]
+    pitch: Option<f32>,
     /// Light position (section 6.1) [default: 0,-0.5,-0.7 for the box; for other
     /// scenes the same place relative to the scene, scaled].
     #[arg(long, value_name = "X,Y,Z", value_parser = parse::vec3, allow_hyphen_values = true)]
     light: Option<Vec3>,
     /// Light power P of eq. 10, the same in each channel (lab 2 used 14) [default:
     /// 1.1 for the box; for other scenes scaled with the scene's size squared].
-    #[arg(long, value_name = "P", value_parser = parse::finite, allow_hyphen_values = true)]
+    #[arg(long, value_name = "P", value_parser = parse::non_negative, allow_hyphen_values = true)]
     light_power: Option<f32>,
     /// Indirect light N of eq. 11, the same in each channel.
-    #[arg(long, value_name = "N", default_value = "0.5", value_parser = parse::finite,
+    #[arg(long, value_name = "N", default_value = "0.5", value_parser = parse::non_negative,
           allow_hyphen_values = true)]
     indirect: f32,
-    /// Near clipping plane: geometry closer to the camera than Z is cut away.
-    #[arg(long, value_name = "Z", default_value = "0.01", value_parser = parse::positive,
-          allow_hyphen_values = true)]
-    near: f32,
+    /// Near clipping plane: geometry closer to the camera than Z is cut away
+    /// [default: 0.01; for a scene smaller than the box, scaled with its size].
+    #[arg(long, value_name = "Z", value_parser = parse::positive, allow_hyphen_values = true)]
+    near: Option<f32>,
     /// Draw as the handout does, without clipping: a triangle with a corner behind
     /// the camera is projected through it and drawn wrong (but never out of bounds).
     #[arg(long)]
@@ -204,9 +204,8 @@ impl SceneArgs {
             height: self.size.1,
             focal: self.focal,
             yaw: self.yaw,
-            pitch: self.pitch,
+            pitch: self.pitch.unwrap_or(scene.pitch),
             indirect: self.indirect,
-            near: self.near,
             clip: !self.no_clip,
             threads: self
                 .threads
@@ -219,20 +218,26 @@ impl SceneArgs {
             ..Settings::default()
         };
         let forward = settings.camera().axes()[2];
-        let pose = framed_pose(&scene, forward, self.focal, self.size.0, self.size.1);
+        let pose = framed_pose(&scene, forward, self.focal, self.size.0, self.size.1)?;
         settings.camera = self.camera.unwrap_or(pose.camera);
         settings.light = self.light.unwrap_or(pose.light);
         settings.light_power = self.light_power.unwrap_or(pose.light_power);
-        let framed = self.camera.is_none() || self.light.is_none() || self.light_power.is_none();
+        settings.near = self.near.unwrap_or(pose.near);
+        let framed = self.camera.is_none()
+            || self.light.is_none()
+            || self.light_power.is_none()
+            || self.near.is_none();
         if framed && !scene.is_box {
             let v = |v: Vec3| format!("{},{},{}", v.x, v.y, v.z);
             eprintln!(
-                "scene {} ({} triangles): --camera {} --light {} --light-power {}",
+                "scene {} ({} triangles): --camera {} --pitch {} --light {} --light-power {} --near {}",
                 scene.name,
                 scene.mesh.faces.len(),
                 v(settings.camera),
+                settings.pitch,
                 v(settings.light),
-                settings.light_power
+                settings.light_power,
+                settings.near
             );
         }
         Ok((scene, settings))
@@ -242,13 +247,17 @@ impl SceneArgs {
 /// The scene a `--scene` spec names: a bad spec is a usage error, a model file
 /// that cannot be read a failure.
 fn load_scene(spec: &str) -> Result<Scene, Failure> {
-    parse_scene(spec).map_err(|e| {
+    let scene = parse_scene(spec).map_err(|e| {
         if spec.to_lowercase().ends_with(".obj") {
             Failure::Run(e)
         } else {
             Failure::Usage(e)
         }
-    })
+    })?;
+    for warning in &scene.warnings {
+        eprintln!("warning: {warning}");
+    }
+    Ok(scene)
 }
 
 #[derive(Args, Debug)]
@@ -414,7 +423,7 @@ struct ReportArgs {
     #[arg(long, value_name = "X,Y,Z", value_parser = parse::vec3, allow_hyphen_values = true)]
     light: Option<Vec3>,
     /// Light power P of eq. 10 [default: 1.1 for the box; scaled for other scenes].
-    #[arg(long, value_name = "P", value_parser = parse::finite, allow_hyphen_values = true)]
+    #[arg(long, value_name = "P", value_parser = parse::non_negative, allow_hyphen_values = true)]
     light_power: Option<f32>,
     /// Folder for report.md, report.csv and error-vs-time.png (created if missing).
     #[arg(long, value_name = "DIR", default_value = "report")]
@@ -587,7 +596,7 @@ struct CheckArgs {
     #[arg(long, value_name = "WxH", value_parser = parse::size, allow_hyphen_values = true)]
     size: Option<(u32, u32)>,
     /// Focal length f in pixels [default: the image's height].
-    #[arg(long, value_name = "F", value_parser = parse::positive, allow_hyphen_values = true)]
+    #[arg(long, value_name = "F", value_parser = parse::focal, allow_hyphen_values = true)]
     focal: Option<f32>,
     /// Camera position C [default: 0,0,-3.001].
     #[arg(long, value_name = "X,Y,Z", value_parser = parse::vec3, allow_hyphen_values = true)]
@@ -604,10 +613,10 @@ struct CheckArgs {
     #[arg(long, value_name = "X,Y,Z", value_parser = parse::vec3, allow_hyphen_values = true)]
     light: Option<Vec3>,
     /// Light power P of eq. 10 [default: fitted to the image].
-    #[arg(long, value_name = "P", value_parser = parse::finite, allow_hyphen_values = true)]
+    #[arg(long, value_name = "P", value_parser = parse::non_negative, allow_hyphen_values = true)]
     light_power: Option<f32>,
     /// Indirect light N of eq. 11 [default: fitted to the image].
-    #[arg(long, value_name = "N", value_parser = parse::finite, allow_hyphen_values = true)]
+    #[arg(long, value_name = "N", value_parser = parse::non_negative, allow_hyphen_values = true)]
     indirect: Option<f32>,
     /// Also search for the light's position (lit stages).
     #[arg(long)]
@@ -655,10 +664,7 @@ fn check(a: &CheckArgs) -> Result<(), Failure> {
     if let Some(CheckRows::Rows(r)) = &a.rows {
         let result = app::check::check_rows_file(&r.file, &r.vertices).map_err(failure)?;
         if r.json {
-            return print_out(&format!(
-                "{}\n",
-                result.json(&r.file.display().to_string())
-            ));
+            return print_out(&format!("{}\n", result.json(&r.file.display().to_string())));
         }
         return print_out(&result.text());
     }
@@ -802,7 +808,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
         }
         Command::Report(a) => {
             let scene = load_scene(&a.scene)?;
-            let mut pose = rasterlab::measure::report::pose_for(&scene);
+            let mut pose = rasterlab::measure::report::pose_for(&scene)?;
             pose.light = a.light.unwrap_or(pose.light);
             pose.light_power = a.light_power.unwrap_or(pose.light_power);
             let written = app::report(&a.out, a.quick, &scene, &pose, |line| eprintln!("{line}"))?;

@@ -120,8 +120,10 @@ fn committed_pictures_match_the_code() {
         name: "sphere".into(),
         mesh: sphere,
         is_box: false,
+        pitch: 0.0,
+        warnings: Vec::new(),
     };
-    let pose = rasterlab::scene::framed_pose(&scene, glam::Vec3::Z, 300.0, 300, 300);
+    let pose = rasterlab::scene::framed_pose(&scene, glam::Vec3::Z, 300.0, 300, 300).unwrap();
     let settings = Settings {
         width: 300,
         height: 300,
@@ -244,7 +246,7 @@ fn committed_pictures_match_the_code() {
     // rasterlab report: the heat maps (deterministic, unlike its times)
     let plan = rasterlab::measure::report::Plan::full();
     let cornell = rasterlab::scene::parse_scene("cornell").unwrap();
-    let pose = rasterlab::measure::report::pose_for(&cornell);
+    let pose = rasterlab::measure::report::pose_for(&cornell).unwrap();
     for (name, picture) in rasterlab::measure::report::heat_maps(&plan, &cornell, &pose) {
         assert_picture(&docs().join("report").join(name), &picture);
     }

@@ -389,3 +389,135 @@ fn a_file_where_a_folder_goes_is_named_so() {
     let o = run_in(Some(&dir), &["check", "--out", "f", "f"]);
     assert_eq!(o.status.code(), Some(1), "{}", err(&o));
 }
+
+/// The RGB bytes of a BMP the binary wrote (rows bottom up, no padding at
+/// these widths).
+fn bmp_pixels(path: &Path) -> Vec<[u8; 3]> {
+    let bytes = fs::read(path).unwrap();
+    bytes[54..]
+        .chunks_exact(3)
+        .map(|p| [p[0], p[1], p[2]])
+        .collect()
+}
+
+#[test]
+fn the_longest_focal_length_accepted_still_draws_what_rays_see() {
+    let dir = temp_dir("focal");
+    // At f = 1e9 the view is a sliver of the back wall: one colour, as the rays say.
+    for args in [
+        "depth --focal 1e9 --size 100x100 -o d.bmp",
+        "raytrace --flat --focal 1e9 --size 100x100 -o r.bmp",
+    ] {
+        let o = run_in(Some(&dir), &args.split(' ').collect::<Vec<_>>());
+        assert!(o.status.success(), "{}", err(&o));
+    }
+    let (d, r) = (
+        bmp_pixels(&dir.join("d.bmp")),
+        bmp_pixels(&dir.join("r.bmp")),
+    );
+    assert_eq!(d, r);
+    assert!(
+        d.iter().all(|p| *p == d[0] && *p != [0, 0, 0]),
+        "{:?}",
+        d[0]
+    );
+    let o = run(&["depth", "--focal", "1.1e9"]);
+    refused(&o, 2, "at most 1e9 pixels");
+}
+
+/// The share of pixels that are not black in a BMP.
+fn drawn_share(path: &Path) -> f64 {
+    let px = bmp_pixels(path);
+    px.iter().filter(|p| **p != [0, 0, 0]).count() as f64 / px.len() as f64
+}
+
+#[test]
+fn scenes_of_any_framable_size_are_drawn_and_others_refused() {
+    let dir = temp_dir("scene-sizes");
+    let triangle = |s: f32| format!("v 0 0 0\nv {s} 0 0\nv 0 {s} 0\nf 1 2 3\n");
+    fs::write(dir.join("tiny.obj"), triangle(1e-3)).unwrap();
+    fs::write(dir.join("huge.obj"), triangle(1e30)).unwrap();
+    // A model a millimetre across: framed, with the near plane scaled, so drawn.
+    let o = run_in(Some(&dir), &["depth", "--scene", "tiny.obj", "-o", "t.bmp"]);
+    assert!(o.status.success(), "{}", err(&o));
+    assert!(err(&o).contains("--near 0.00000"), "{}", err(&o));
+    let share = drawn_share(&dir.join("t.bmp"));
+    assert!(share > 0.1, "{share}");
+    for args in [
+        &["depth", "--scene", "huge.obj", "-o", "h.bmp"][..],
+        &["report", "--quick", "--scene", "huge.obj", "--out", "r"][..],
+    ] {
+        let o = run_in(Some(&dir), args);
+        refused(&o, 1, "larger than f32 can frame");
+    }
+    assert!(!dir.join("h.bmp").exists() && !dir.join("r").exists());
+    // A floor grid is looked down on: more than a row of pixels.
+    let o = run_in(Some(&dir), &["depth", "--scene", "grid:200", "-o", "g.bmp"]);
+    assert!(o.status.success(), "{}", err(&o));
+    assert!(err(&o).contains("--pitch -35"), "{}", err(&o));
+    let share = drawn_share(&dir.join("g.bmp"));
+    assert!(share > 0.15, "{share}");
+}
+
+#[test]
+fn what_a_model_asks_for_and_does_not_get_is_said() {
+    let dir = temp_dir("model-warnings");
+    fs::write(
+        dir.join("m.mtl"),
+        "newmtl hot\nKd 2 -0.5 0.5\nnewmtl tiles\nKd 1 1 1\nmap_Kd -s 2 2 1 -bm 0.5 my tiles.png\n",
+    )
+    .unwrap();
+    // A 2 x 1 texture: left black, right white.
+    let texture = rasterlab::Frame {
+        width: 2,
+        height: 1,
+        color: vec![0, 0x00ff_ffff],
+        depth: Vec::new(),
+    };
+    rasterlab::app::image_io::write_image(&texture, &dir.join("my tiles.png")).unwrap();
+    let model =
+        "mtllib m.mtl\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n\
+                 usemtl hot\nf 1/1 2/2 3/3\nusemtl nowhere\nf 1/1 3/3 4/4\nf 1 2\nf 3 4\n\
+                 usemtl tiles\nf 1/1 2/2 3/3 4/4\n";
+    fs::write(dir.join("m.obj"), model).unwrap();
+    let o = run_in(
+        Some(&dir),
+        &["pixel-light", "--scene", "m.obj", "-o", "m.png"],
+    );
+    assert!(o.status.success(), "{}", err(&o));
+    let warnings: Vec<&str> = std::str::from_utf8(&o.stderr)
+        .unwrap()
+        .lines()
+        .filter(|l| l.starts_with("warning: "))
+        .collect();
+    assert_eq!(
+        warnings,
+        [
+            "warning: m.obj: line 12: usemtl nowhere: no material of that name in the material libraries: its faces are grey",
+            "warning: m.obj: line 14: a face needs at least three corners: left out (and 1 more such faces)",
+            "warning: m.obj: material hot: Kd 2 -0.5 0.5 is outside [0, 1]: clamped to it",
+            "warning: m.obj: material tiles: map_Kd option -bm is not supported: left out",
+        ]
+    );
+    // -s 2 2 1 scales the coordinates: the file name is what follows the options.
+    let mesh = rasterlab::scene::load_obj(&dir.join("m.obj")).unwrap();
+    let tiles = mesh
+        .materials
+        .iter()
+        .position(|m| m.texture.is_some())
+        .unwrap();
+    let face = mesh
+        .faces
+        .iter()
+        .find(|f| f.material as usize == tiles)
+        .unwrap();
+    let uvs: Vec<_> = face
+        .vertices
+        .iter()
+        .map(|&i| mesh.uvs[i as usize])
+        .collect();
+    assert!(
+        uvs.iter().any(|t| *t == glam::Vec2::new(2.0, 2.0)),
+        "{uvs:?}"
+    );
+}

@@ -388,13 +388,13 @@ fn framing_fills_the_view_and_scales_the_light() {
     use rasterlab::scene::{framed_pose, parse_scene, HANDOUT_POSE};
     let forward = glam::Vec3::Z;
     assert_eq!(
-        framed_pose(&parse_scene("cornell:2").unwrap(), forward, 500.0, 500, 500),
+        framed_pose(&parse_scene("cornell:2").unwrap(), forward, 500.0, 500, 500).unwrap(),
         HANDOUT_POSE
     );
     // A unit sphere: half the view is atan(250 / 500); the sphere's radius fills
     // 90 % of it.
     let sphere = parse_scene("sphere:960").unwrap();
-    let p = framed_pose(&sphere, forward, 500.0, 500, 500);
+    let p = framed_pose(&sphere, forward, 500.0, 500, 500).unwrap();
     let expected = 1.0 / (0.9 * (0.5f32).atan().sin());
     assert!(
         (p.camera - glam::Vec3::new(0.0, 0.0, -expected)).length() < 1e-4,
@@ -403,10 +403,26 @@ fn framing_fills_the_view_and_scales_the_light() {
     // The same sphere 1000 times larger: everything scales, power by a million.
     let mut big = sphere.clone();
     big.mesh = big.mesh.map_positions(|v| v * 1000.0);
-    let q = framed_pose(&big, forward, 500.0, 500, 500);
+    let q = framed_pose(&big, forward, 500.0, 500, 500).unwrap();
     assert!((q.camera / 1000.0 - p.camera).length() < 1e-3, "{q:?}");
     assert!((q.light / 1000.0 - p.light).length() < 1e-3);
     assert!((q.light_power / p.light_power / 1e6 - 1.0).abs() < 1e-3);
+    // A unit sphere and a larger one keep the handout's near plane.
+    assert_eq!((p.near, q.near), (0.01, 0.01));
+    // The same sphere 1000 times smaller: the near plane shrinks with it, so
+    // the camera, 1/1000 of the unit sphere's distance away, does not cut it.
+    let mut small = sphere.clone();
+    small.mesh = small.mesh.map_positions(|v| v / 1000.0);
+    let t = framed_pose(&small, forward, 500.0, 500, 500).unwrap();
+    assert!((t.camera * 1000.0 - p.camera).length() < 1e-3, "{t:?}");
+    assert!(t.near < -t.camera.z - 1e-3, "{t:?}");
+    // Sizes f32 cannot frame are refused.
+    for factor in [1e30f32, 1e-12] {
+        let mut odd = sphere.clone();
+        odd.mesh = odd.mesh.map_positions(|v| v * factor);
+        let e = framed_pose(&odd, forward, 500.0, 500, 500).unwrap_err();
+        assert!(e.contains("than f32 can frame"), "{e}");
+    }
     // The box's place for the light is inside a closed sphere: the light moves out
     // along the same direction to 0.5 box units (scaled) beyond the sphere.
     let scale = 1.0 / 3f32.sqrt();
@@ -419,7 +435,7 @@ fn framing_fills_the_view_and_scales_the_light() {
         "/docs/models/cornell.obj"
     ))
     .unwrap();
-    let r = framed_pose(&room, forward, 500.0, 500, 500);
+    let r = framed_pose(&room, forward, 500.0, 500, 500).unwrap();
     assert_eq!(r.light, HANDOUT_POSE.light);
     assert_eq!(r.light_power, HANDOUT_POSE.light_power);
 }

@@ -79,9 +79,35 @@ fn bad_numbers_are_refused_before_drawing() {
         (vec!["pixel-light", "--focal", "-500"], "greater than 0"),
         (vec!["pixel-light", "--size", "0x10"], "from 1 to 16384"),
         (vec!["pixel-light", "--size", "16385x2"], "from 1 to 16384"),
+        // A side too large for any integer type is still a side too long.
         (
             vec!["pixel-light", "--size", "99999999999x2"],
-            "not a whole number",
+            "from 1 to 16384",
+        ),
+        (
+            vec!["pixel-light", "--size", "4294967296x1"],
+            "from 1 to 16384",
+        ),
+        (
+            vec!["pixel-light", "--size", "12ax2"],
+            "'12a' is not a whole number",
+        ),
+        (
+            vec!["pixel-light", "--light-power", "-1"],
+            "must be at least 0",
+        ),
+        (
+            vec!["pixel-light", "--indirect", "-1"],
+            "must be at least 0",
+        ),
+        (
+            vec!["check", "x.png", "--indirect", "-0.5"],
+            "must be at least 0",
+        ),
+        (vec!["depth", "--focal", "1e28"], "at most 1e9 pixels"),
+        (
+            vec!["check", "x.png", "--focal", "1e12"],
+            "at most 1e9 pixels",
         ),
     ] {
         let o = rasterlab(&args);

@@ -171,6 +171,8 @@ fn a_models_map_kd_is_its_texture() {
         name: "square".into(),
         mesh,
         is_box: false,
+        pitch: 0.0,
+        warnings: Vec::new(),
     };
     apply_texture(&mut scene, &TextureSpec::parse("none")).unwrap();
     let frame = render(Figure::of(StageName::PixelLight), &scene.mesh, &s);

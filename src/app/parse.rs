@@ -14,16 +14,20 @@ pub fn size(s: &str) -> Result<(u32, u32), String> {
         .split_once(['x', 'X'])
         .ok_or_else(|| format!("expected WIDTHxHEIGHT such as 500x500, got '{s}'"))?;
     let side = |t: &str| -> Result<u32, String> {
-        let v: u32 = t
-            .trim()
-            .parse()
-            .map_err(|_| format!("'{t}' is not a whole number of pixels in '{s}'"))?;
-        if v == 0 || v > MAX_SIDE {
+        let t = t.trim();
+        let digits = !t.is_empty() && t.bytes().all(|b| b.is_ascii_digit());
+        // A whole number too large for u32 is still a side too long, not a non-number.
+        let v: u64 = match t.parse() {
+            Ok(v) => v,
+            Err(_) if digits => u64::MAX,
+            Err(_) => return Err(format!("'{t}' is not a whole number of pixels in '{s}'")),
+        };
+        if v == 0 || v > MAX_SIDE as u64 {
             return Err(format!(
                 "each side must be from 1 to {MAX_SIDE} pixels, got '{s}'"
             ));
         }
-        Ok(v)
+        Ok(v as u32)
     };
     Ok((side(w)?, side(h)?))
 }
@@ -77,6 +81,32 @@ pub fn positive(s: &str) -> Result<f32, String> {
     } else {
         Err(format!("must be greater than 0, got '{s}'"))
     }
+}
+
+/// A finite number at least zero: a light's power, the indirect light.
+pub fn non_negative(s: &str) -> Result<f32, String> {
+    let v = finite(s)?;
+    if v >= 0.0 {
+        Ok(v)
+    } else {
+        Err(format!(
+            "must be at least 0 (light cannot be negative), got '{s}'"
+        ))
+    }
+}
+
+/// The longest focal length accepted, in pixels.
+pub const MAX_FOCAL: f32 = 1e9;
+
+/// A focal length: greater than 0 and at most [`MAX_FOCAL`].
+pub fn focal(s: &str) -> Result<f32, String> {
+    let v = positive(s)?;
+    if v > MAX_FOCAL {
+        return Err(format!(
+            "at most {MAX_FOCAL:e} pixels, got '{s}': a point beside the view projects f x/z pixels away, and past about 1e11 f32's 24 bits cannot place the clipped edges (Figure 5 at 2e11 draws 60 % of the wall black)"
+        ));
+    }
+    Ok(v)
 }
 
 /// A stage's name: `points`, `wireframe`, `filled`, `depth`, `vertex-light`, `pixel-light`.

@@ -121,6 +121,8 @@ fn toggled_mesh(
         name: spec.to_string(),
         mesh: given.clone(),
         is_box: spec == "cornell" || spec.starts_with("cornell:"),
+        pitch: 0.0,
+        warnings: Vec::new(),
     };
     if texture {
         let had = given.materials.iter().any(|m| m.texture.is_some());

@@ -137,6 +137,8 @@ fn camera_for(size: u32, pose: &Pose) -> Camera {
     Camera {
         position: pose.camera,
         focal: size as f32,
+        pitch: pose.pitch.to_radians(),
+        near: Some(pose.near),
         ..Camera::handout(size, size)
     }
 }
@@ -151,8 +153,12 @@ fn light_for(pose: &Pose) -> Light {
 
 /// The pose a report draws `scene` in: the handout's for the box, framed otherwise
 /// (the same at every size, since f grows with the image).
-pub fn pose_for(scene: &Scene) -> Pose {
-    framed_pose(scene, glam::Vec3::Z, 1.0, 1, 1)
+pub fn pose_for(scene: &Scene) -> Result<Pose, String> {
+    let tilted = Camera {
+        pitch: scene.pitch.to_radians(),
+        ..Camera::handout(1, 1)
+    };
+    framed_pose(scene, tilted.axes()[2], 1.0, 1, 1)
 }
 
 fn reference(scene: &Mesh, size: u32, runs: usize, pose: &Pose) -> Reference {

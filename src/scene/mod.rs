@@ -27,7 +27,16 @@ pub struct Scene {
     /// The handout's box, possibly subdivided: drawn with the handout's default
     /// camera and light rather than framed by its bounding sphere.
     pub is_box: bool,
+    /// The tilt it is looked at with unless the command line says (degrees,
+    /// positive looks up): a floor grid is looked down on, not seen edge-on.
+    pub pitch: f32,
+    /// What a reader should know about how the file was read (see
+    /// [`obj::read_obj`]).
+    pub warnings: Vec<String>,
 }
+
+/// The tilt a grid is looked at with: from above, at an angle.
+pub const GRID_PITCH: f32 = -35.0;
 
 /// The scene a spec names: `cornell` (the default), `cornell:K` (the box with each
 /// triangle split into K² by `subdivide`, K from 1 to 256), `sphere:N` (about N
@@ -37,10 +46,13 @@ pub fn parse_scene(spec: &str) -> Result<Scene, String> {
     if spec.to_lowercase().ends_with(".obj") {
         let path = Path::new(spec);
         let name = path.file_stem().unwrap_or_default().to_string_lossy();
+        let (mesh, warnings) = read_obj(path)?;
         return Ok(Scene {
             name: name.into_owned(),
-            mesh: load_obj(path)?,
+            mesh,
             is_box: false,
+            pitch: 0.0,
+            warnings,
         });
     }
     let (kind, count) = match spec.split_once(':') {
@@ -69,6 +81,8 @@ pub fn parse_scene(spec: &str) -> Result<Scene, String> {
         name: spec.to_string(),
         mesh,
         is_box,
+        pitch: if kind == "grid" { GRID_PITCH } else { 0.0 },
+        warnings: Vec::new(),
     })
 }
 
@@ -97,6 +111,10 @@ pub struct Pose {
     pub camera: Vec3,
     pub light: Vec3,
     pub light_power: f32,
+    /// The near clipping plane's distance.
+    pub near: f32,
+    /// The tilt the scene is framed for (degrees, positive looks up).
+    pub pitch: f32,
 }
 
 /// The handout's pose: camera (0, 0, -3.001), light (0, -0.5, -0.7), power 1.1.
@@ -104,7 +122,14 @@ pub const HANDOUT_POSE: Pose = Pose {
     camera: Vec3::new(0.0, 0.0, -3.001),
     light: Vec3::new(0.0, -0.5, -0.7),
     light_power: 1.1,
+    near: crate::pipeline::camera::DEFAULT_NEAR,
+    pitch: 0.0,
 };
+
+/// The sizes (bounding-sphere radii) a scene may have to be framed: beyond them
+/// f32 cannot hold what framing computes (the light's power grows with the size
+/// squared, 1/z with the inverse of the distance).
+pub const FRAMED_RADII: (f32, f32) = (1e-9, 1e12);
 
 /// How far the box's light hangs below the ceiling (box units): a light moved out
 /// of a closed model keeps this gap to the model's bounding sphere, scaled.
@@ -119,13 +144,35 @@ const LIGHT_GAP: f32 = 0.5;
 /// is open towards the camera; inside a closed model it would light only the
 /// model's inside, so when a surface lies between that place and the camera the
 /// light moves out along the same direction from the centre to just outside the
-/// bounding sphere ([`LIGHT_GAP`] from it, scaled).
-pub fn framed_pose(scene: &Scene, forward: Vec3, focal: f32, width: u32, height: u32) -> Pose {
+/// bounding sphere ([`LIGHT_GAP`] from it, scaled). The near plane stays the
+/// handout's 0.01 for a scene 1 unit across (its radius) or larger, and shrinks with a
+/// smaller one, so that a model in millimetres is not cut away whole. A scene
+/// whose size is outside [`FRAMED_RADII`] is refused.
+pub fn framed_pose(
+    scene: &Scene,
+    forward: Vec3,
+    focal: f32,
+    width: u32,
+    height: u32,
+) -> Result<Pose, String> {
     if scene.is_box {
-        return HANDOUT_POSE;
+        return Ok(HANDOUT_POSE);
     }
     let (box_centre, box_radius) = bounding_sphere(&cornell_box());
     let (centre, radius) = bounding_sphere(&scene.mesh);
+    let (low, high) = FRAMED_RADII;
+    if !(centre.is_finite() && radius.is_finite() && radius <= high) {
+        return Err(format!(
+            "scene {} is more than {high:e} units across (its bounding sphere's radius): larger than f32 can frame: scale the model down",
+            scene.name
+        ));
+    }
+    if radius < low && !scene.mesh.positions.is_empty() {
+        return Err(format!(
+            "scene {} is {radius:e} units across (its bounding sphere's radius), smaller than f32 can frame (at least {low:e}): scale the model up",
+            scene.name
+        ));
+    }
     let radius = if radius > 0.0 { radius } else { 1.0 };
     let half = width.min(height) as f32 / 2.0;
     let angle = (half / focal).atan();
@@ -137,11 +184,13 @@ pub fn framed_pose(scene: &Scene, forward: Vec3, focal: f32, width: u32, height:
     if hides(&scene.mesh, light, camera) {
         light = centre + offset.normalize() * (radius + LIGHT_GAP * scale);
     }
-    Pose {
+    Ok(Pose {
         camera,
         light,
         light_power: HANDOUT_POSE.light_power * scale * scale,
-    }
+        near: HANDOUT_POSE.near * radius.min(1.0),
+        pitch: scene.pitch,
+    })
 }
 
 /// Whether a triangle of `mesh` lies on the segment from `light` to `camera`.
