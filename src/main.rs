@@ -818,6 +818,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             Ok(())
         }
         Command::Stress(a) => {
+            app::stress_fits(a.quick)?;
             let (tables, failed, total) = app::stress(a.quick, |line| eprintln!("{line}"));
             print_out(&format!("{tables}\n"))?;
             if failed > 0 {

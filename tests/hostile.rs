@@ -301,6 +301,7 @@ fn run_in_3gb(dir: &Path, args: &str) -> Output {
 fn frames_larger_than_memory_are_refused_not_aborted() {
     let dir = temp_dir("memory");
     for args in [
+        "stress",
         "depth --size 16384x16384 -o big.png",
         "animate depth --size 16384x16384 -o big.gif",
         "raytrace --flat --size 16384x16384 -o big.png",
@@ -321,31 +322,16 @@ fn png_header(path: &Path, w: u32, h: u32) {
     ihdr.extend([8, 2, 0, 0, 0]);
     bytes.extend(13u32.to_be_bytes());
     bytes.extend(&ihdr);
-    bytes.extend(crc32(&ihdr).to_be_bytes());
+    bytes.extend(common::crc32(&ihdr).to_be_bytes());
     // An IDAT chunk (empty zlib data) ends the header for the decoder.
     let idat = [b"IDAT".as_slice(), &[0x78, 0x9c, 0x03, 0, 0, 0, 0, 1]].concat();
     bytes.extend(8u32.to_be_bytes());
     bytes.extend(&idat);
-    bytes.extend(crc32(&idat).to_be_bytes());
+    bytes.extend(common::crc32(&idat).to_be_bytes());
     bytes.extend([0, 0, 0, 0]);
     bytes.extend(b"IEND");
-    bytes.extend(crc32(b"IEND").to_be_bytes());
+    bytes.extend(common::crc32(b"IEND").to_be_bytes());
     fs::write(path, bytes).unwrap();
-}
-
-fn crc32(data: &[u8]) -> u32 {
-    let mut c = !0u32;
-    for &b in data {
-        c ^= b as u32;
-        for _ in 0..8 {
-            c = if c & 1 == 1 {
-                0xedb8_8320 ^ (c >> 1)
-            } else {
-                c >> 1
-            };
-        }
-    }
-    !c
 }
 
 #[test]
@@ -519,5 +505,18 @@ fn what_a_model_asks_for_and_does_not_get_is_said() {
     assert!(
         uvs.iter().any(|t| *t == glam::Vec2::new(2.0, 2.0)),
         "{uvs:?}"
+    );
+}
+
+#[test]
+fn a_black_image_is_told_apart_without_contradiction() {
+    let dir = temp_dir("black");
+    let black = rasterlab::Frame::new(500, 500);
+    rasterlab::app::image_io::write_image(&black, &dir.join("black.png")).unwrap();
+    let o = run_in(Some(&dir), &["check", "black.png"]);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        text.starts_with("black.png is not a lab 3 image: the closest stage, points (Figure 2), matches 100 % of the image's pixels within 16/255 but only 0 % of the pixels it draws; a lab 3 screenshot matches over 90 % of both."),
+        "{text}"
     );
 }

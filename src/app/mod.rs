@@ -542,6 +542,24 @@ pub fn report(
 
 /// `rasterlab stress`: runs the catalogue, progress to `progress`; returns the
 /// tables to print, how many cases failed and how many ran.
+/// The most memory the full catalogue needs, as address space: its 16000 x 16000
+/// case draws into 2 GB of colour and depth. Measured: the run passes under
+/// `ulimit -v 3300000` and aborts under 3000000; `--quick` peaks at 18 MB.
+pub const STRESS_MEMORY: usize = 3_200_000_000;
+
+/// Refuses the full catalogue up front, with what it needs, when that much memory
+/// cannot be had, instead of aborting half way through it.
+pub fn stress_fits(quick: bool) -> Result<(), String> {
+    let mut probe = Vec::<u8>::new();
+    match quick || probe.try_reserve_exact(STRESS_MEMORY).is_ok() {
+        true => Ok(()),
+        false => Err(format!(
+            "out of memory: stress needs about {} of memory (its 16000 x 16000 case); stress --quick needs about 20 MB",
+            crate::pipeline::target::megabytes(STRESS_MEMORY)
+        )),
+    }
+}
+
 pub fn stress(quick: bool, progress: impl FnMut(&str)) -> (String, usize, usize) {
     let outcomes = stress::run_all(quick, progress);
     let text = format!(

@@ -2,7 +2,7 @@
 //! the stage, the light, the variants, the errors before and after the fit, and
 //! where the differences left are.
 
-use super::image::{ImageCheck, Shading, LAB3_TOLERANCE, THRESHOLD};
+use super::image::{ImageCheck, Shading, LAB3_SHARE, LAB3_TOLERANCE, THRESHOLD};
 use crate::pipeline::Light;
 use std::fmt::Write as _;
 
@@ -59,14 +59,21 @@ impl ImageCheck {
         let mut out = String::new();
         let Some(f) = &self.fitted else {
             let c = &self.closest;
+            let (all, drawn) = (c.errors.near * 100.0, c.errors.near_drawn * 100.0);
+            // Say which of the two shares fell short: a black image matches most
+            // of the pixels (the background) and none of those a stage draws.
+            let joint = if c.errors.near >= LAB3_SHARE {
+                "but only"
+            } else {
+                "and"
+            };
             let _ = writeln!(
                 out,
-                "{name} is not a lab 3 image: the closest stage, {} (Figure {}), gets only {:.0} % of its pixels within {}/255 ({:.0} % of those it draws); a lab 3 screenshot gets over 90 %.",
+                "{name} is not a lab 3 image: the closest stage, {} (Figure {}), matches {}{all:.0} % of the image's pixels within {}/255 {joint} {drawn:.0} % of the pixels it draws; a lab 3 screenshot matches over 90 % of both.",
                 c.hypothesis.stage.name(),
                 c.hypothesis.figure(),
-                c.errors.near * 100.0,
+                if c.errors.near >= LAB3_SHARE { "" } else { "only " },
                 LAB3_TOLERANCE,
-                c.errors.near_drawn * 100.0
             );
             let _ = writeln!(
                 out,

@@ -112,7 +112,32 @@ fn integers(line: &str) -> Result<Vec<i32>, String> {
         current.clear();
         Ok(())
     };
-    for c in line.chars() {
+    let chars: Vec<char> = line.chars().collect();
+    let mut i = 0;
+    while i < chars.len() {
+        let c = chars[i];
+        i += 1;
+        let next_is_digit = |k: usize| chars.get(k).is_some_and(|c| c.is_ascii_digit());
+        // A fraction or an exponent right after digits (`2.5`, `1e30`) is a
+        // number that is not whole, not two numbers.
+        let not_whole = current.chars().any(|c| c.is_ascii_digit())
+            && ((c == '.' && next_is_digit(i))
+                || ((c == 'e' || c == 'E')
+                    && (next_is_digit(i)
+                        || (matches!(chars.get(i), Some('+' | '-')) && next_is_digit(i + 1)))));
+        if not_whole {
+            let mut token: String = current.clone();
+            token.push(c);
+            while let Some(&d) = chars.get(i) {
+                if d.is_ascii_alphanumeric() || matches!(d, '.' | '+' | '-') {
+                    token.push(d);
+                    i += 1;
+                } else {
+                    break;
+                }
+            }
+            return Err(format!("'{token}' is not a whole number of pixels"));
+        }
         if c.is_ascii_digit() || (c == '-' && current.is_empty()) {
             current.push(c);
         } else {
@@ -357,5 +382,21 @@ mod tests {
         assert!(parse_rows("99999999999 1 2 3")
             .unwrap_err()
             .starts_with("line 1: '99999999999' is not a whole number"));
+        // A fraction or an exponent is one number that is not whole.
+        for (text, token) in [
+            ("Start: (1e30,5). End: (10,5).", "1e30"),
+            ("Start: (2.5,5). End: (10,5).", "2.5"),
+            ("Start: (1,5). End: (3E-2,5).", "3E-2"),
+        ] {
+            assert_eq!(
+                parse_rows(text).unwrap_err(),
+                format!("line 1: '{token}' is not a whole number of pixels"),
+            );
+        }
+        // A full stop after a number ends a sentence: "(10,5). End".
+        assert_eq!(
+            parse_rows("Start: (10,5). End: (10,5).").unwrap(),
+            vec![[10, 5, 10, 5]]
+        );
     }
 }
