@@ -36,6 +36,15 @@ fn one_two_and_seven_threads_draw_the_same_bytes() {
                     (frame, p.stats())
                 };
                 let (one, stats) = draw(1);
+                // Something was drawn (the box's points light 18 pixels): equal
+                // black frames would prove nothing.
+                let drawn = one.color.iter().filter(|&&c| c != 0).count();
+                assert!(
+                    drawn >= 10 && stats.pixels_written > 0,
+                    "{} {}: {drawn} pixels drawn",
+                    scene.name,
+                    figure.label()
+                );
                 for threads in [2, 7] {
                     let (many, many_stats) = draw(threads);
                     assert!(
