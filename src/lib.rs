@@ -1,10 +1,12 @@
 //! rasterlab: the DH2323 lab 3 "Rasterization" handout as a small Rust library.
 //!
-//! Four layers, each using only the ones before it:
+//! Five layers, each using only the ones before it:
 //!
 //! - [`pipeline`]: the rasterizer of the handout's section 6 for any mesh (camera,
 //!   clipping, rasterizers, interpolation, stages, light, render targets). It
 //!   depends on glam alone.
+//! - [`extensions`]: what goes beyond the handout on top of the pipeline, without
+//!   changing it: depth of field so far.
 //! - [`scene`]: what builds meshes: the handout's Cornell box (and its
 //!   subdivisions), procedural scenes (a sphere, a floor grid) and OBJ models read
 //!   with tobj, chosen by a `--scene` spec; it also frames a scene other than the
@@ -17,6 +19,7 @@
 //! `docs/handout-map.md` maps each handout function to the item that implements it.
 
 pub mod app;
+pub mod extensions;
 pub mod measure;
 pub mod pipeline;
 pub mod scene;

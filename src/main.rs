@@ -166,7 +166,7 @@ struct SceneArgs {
     /// radius APERTURE (world units).
     #[arg(long, value_name = "FOCUS,APERTURE", value_parser = parse::dof,
           allow_hyphen_values = true)]
-    dof: Option<rasterlab::pipeline::dof::DepthOfField>,
+    dof: Option<rasterlab::extensions::depth_of_field::DepthOfField>,
 }
 
 /// How textures are read between texels.

@@ -2,7 +2,7 @@
 //! follows the circle of confusion.
 
 use rasterlab::app::{self, Settings};
-use rasterlab::pipeline::dof::DepthOfField;
+use rasterlab::extensions::depth_of_field::DepthOfField;
 use rasterlab::{Figure, StageName};
 
 /// Pixel-light on the checker box, whose squares' edges show any blur.

@@ -167,7 +167,7 @@ fn committed_pictures_match_the_code() {
     // rasterlab pixel-light --texture checker --dof 4.001,0.05 (and 2.2,0.05)
     for (name, focus) in [("back-wall", 4.001), ("near", 2.2)] {
         let settings = Settings {
-            dof: Some(rasterlab::pipeline::dof::DepthOfField {
+            dof: Some(rasterlab::extensions::depth_of_field::DepthOfField {
                 focus,
                 aperture: 0.05,
             }),

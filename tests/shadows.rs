@@ -56,19 +56,26 @@ fn the_shadow_map_shadows_what_shadow_rays_shadow() {
     );
 }
 
-/// Without --shadows nothing changes: the lit figures draw no shadow map.
+/// Without --shadows nothing changes: pixel-light draws the committed Figure 7,
+/// byte for byte, and no shadow map; with them it does not.
 #[test]
 fn no_shadows_is_the_handouts_figure() {
-    let handout = app::render(
-        Figure::of(StageName::PixelLight),
-        &cornell_box(),
-        &Settings::default(),
-        None,
-    )
-    .0;
-    assert_eq!(pixel_light(Shadows::None, Raster::Rows), handout);
+    let figure7 = concat!(env!("CARGO_MANIFEST_DIR"), "/steps/fig7-pixel-light.png");
+    let (w, h, committed) =
+        rasterlab::app::image_io::read_rgb(std::path::Path::new(figure7)).unwrap();
+    let plain = pixel_light(Shadows::None, Raster::Rows);
+    assert_eq!((w, h), (plain.width, plain.height));
+    assert!(
+        plain.to_rgb8() == committed,
+        "pixel-light without shadows is not Figure 7"
+    );
+    assert!(pixel_light(Shadows::Hard, Raster::Rows).to_rgb8() != committed);
     let s = Settings::default();
     assert!(Figure::of(StageName::PixelLight)
         .shadow_map(&cornell_box(), &s.light(), s.near)
         .is_none());
+    assert!(Figure::of(StageName::PixelLight)
+        .with_shadows(Shadows::Hard)
+        .shadow_map(&cornell_box(), &s.light(), s.near)
+        .is_some());
 }

@@ -11,12 +11,12 @@ pub mod parallel;
 pub mod parse;
 pub mod viewer;
 
+use crate::extensions::depth_of_field::DepthOfField;
 use crate::measure::figure::Figure;
 use crate::measure::plot::Canvas;
 use crate::measure::timing::{time_runs, Timing};
 use crate::measure::{raytrace, report, stress};
 use crate::pipeline::camera::DEFAULT_NEAR;
-use crate::pipeline::dof::DepthOfField;
 use crate::pipeline::draw::Stats;
 use crate::pipeline::interpolate::Pixel;
 use crate::pipeline::raster::rows::{compute_polygon_rows, Rows};

@@ -55,14 +55,14 @@ pub fn vec3(s: &str) -> Result<Vec3, String> {
 
 /// `FOCUS,APERTURE`: the depth in focus (> 0) and the lens radius (>= 0), in
 /// world units, for `--dof`.
-pub fn dof(s: &str) -> Result<crate::pipeline::dof::DepthOfField, String> {
+pub fn dof(s: &str) -> Result<crate::extensions::depth_of_field::DepthOfField, String> {
     let v = numbers(s, 2, "FOCUS,APERTURE such as 3,0.05")?;
     if v[0] <= 0.0 || v[1] < 0.0 {
         return Err(format!(
             "the focus depth must be greater than 0 and the aperture at least 0, got '{s}'"
         ));
     }
-    Ok(crate::pipeline::dof::DepthOfField {
+    Ok(crate::extensions::depth_of_field::DepthOfField {
         focus: v[0],
         aperture: v[1],
     })

@@ -237,9 +237,26 @@ impl Figure {
 
     /// The light's shadow map when this figure draws shadows; none otherwise, so
     /// a frame without shadows draws no map. `near` is the camera's near plane.
+    /// The map is drawn by the depth stage with the exact rasterizer, which
+    /// samples the texel centres the lookups assume.
     pub fn shadow_map(self, mesh: &Mesh, light: &Light, near: f32) -> Option<ShadowMap> {
-        (self.shadows != Shadows::None)
-            .then(|| ShadowMap::render(mesh, light, SHADOW_MAP_SIZE, near, self.shadows))
+        if self.shadows == Shadows::None {
+            return None;
+        }
+        let mut pipeline = Pipeline::<Depth, Perspective, EdgeRaster>::new();
+        let uniforms = Uniforms::lit(*light);
+        let draw_depth = |camera: &Camera| {
+            let mut frame = Frame::default();
+            pipeline.render(mesh, camera, &uniforms, &mut frame);
+            frame
+        };
+        Some(ShadowMap::render(
+            light.position,
+            SHADOW_MAP_SIZE,
+            near,
+            self.shadows,
+            draw_depth,
+        ))
     }
 
     /// With shadows, for the lit stages; others draw no light to shadow.

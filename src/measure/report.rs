@@ -2,6 +2,7 @@
 //! draw time, across image sizes and mesh densities, as a table, a CSV file and
 //! an error-against-time plot.
 
+use crate::extensions::depth_of_field::DepthOfField;
 use crate::measure::figure::{Figure, StageName};
 use crate::measure::heat::heat_map_picture;
 use crate::measure::metrics::{
@@ -11,7 +12,6 @@ use crate::measure::metrics::{
 use crate::measure::plot::{Canvas, LogLog, BLACK, DARK};
 use crate::measure::raytrace::{raytrace, Options, Shading, Traced};
 use crate::measure::timing::{time_runs, Timing};
-use crate::pipeline::dof::DepthOfField;
 use crate::pipeline::shadow::Shadows;
 use crate::pipeline::{Camera, Frame, Light, Mesh, Uniforms};
 use crate::scene::{framed_pose, subdivide, Pose, Scene};

@@ -535,10 +535,6 @@ pub trait Render {
 
     /// Whether the stage tests depth, so its target needs a depth buffer.
     fn depth_test(&self) -> bool;
-
-    fn set_cull(&mut self, cull: Cull);
-
-    fn set_lines(&mut self, lines: Lines);
 }
 
 impl<S: Stage, I: Interpolation, R: Rasterizer> Render for Pipeline<S, I, R> {
@@ -548,14 +544,6 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Render for Pipeline<S, I, R> {
 
     fn depth_test(&self) -> bool {
         S::DEPTH_TEST
-    }
-
-    fn set_cull(&mut self, cull: Cull) {
-        self.cull = cull;
-    }
-
-    fn set_lines(&mut self, lines: Lines) {
-        self.lines = lines;
     }
 
     fn draw(&mut self, mesh: &Mesh, camera: &Camera, uniforms: &Uniforms, target: &mut Target) {

@@ -230,8 +230,6 @@ pub fn line_pixels<V>(a: &Pixel<V>, b: &Pixel<V>) -> usize {
 /// illumination and as Figure 8 shows the mistake for the position. 1/z itself is
 /// carried as it is either way, so depth and the visible surfaces do not change.
 pub trait Interpolation: Copy + Default + Send + 'static {
-    /// True when interpolation is perspective-correct.
-    const PERSPECTIVE_CORRECT: bool;
     /// What is carried for a per-pixel struct `q` at a vertex whose 1/z is `zinv`.
     fn encode<V: Varying>(zinv: f32, q: V) -> V;
     /// The per-pixel struct at a pixel whose 1/z is `zinv`, from what was carried.
@@ -248,7 +246,6 @@ pub struct Perspective;
 pub struct Affine;
 
 impl Interpolation for Perspective {
-    const PERSPECTIVE_CORRECT: bool = true;
     #[inline]
     fn encode<V: Varying>(zinv: f32, q: V) -> V {
         q * zinv
@@ -260,7 +257,6 @@ impl Interpolation for Perspective {
 }
 
 impl Interpolation for Affine {
-    const PERSPECTIVE_CORRECT: bool = false;
     #[inline]
     fn encode<V: Varying>(_: f32, q: V) -> V {
         q

@@ -16,8 +16,8 @@
 //! - [`interpolate`](mod@interpolate): `Interpolate` for any per-pixel struct, and
 //!   perspective-correct or affine interpolation.
 //! - [`texture`]: images that a material's reflectance is read from.
-//! - [`shadow`]: a cube shadow map from the point light, for `--shadows`.
-//! - [`dof`]: depth of field, a post-process on the colour and depth buffers.
+//! - [`shadow`]: a cube shadow map from the point light, for `--shadows` (drawn by
+//!   the caller's depth pass, so that it needs nothing of [`draw`]).
 //! - [`target`]: colour and depth buffers over a band of rows, and 8-bit packing.
 //! - [`draw`]: the handout's `Draw` and `DrawPolygon`, which joins them.
 //!
@@ -25,7 +25,6 @@
 
 pub mod camera;
 pub mod clip;
-pub mod dof;
 pub mod draw;
 pub mod interpolate;
 pub mod light;

@@ -14,12 +14,6 @@
 //! one keeps a block's shadow touching the block at the map sizes used here.
 
 use super::camera::Camera;
-use super::draw::{Pipeline, Render};
-use super::interpolate::Perspective;
-use super::light::Light;
-use super::mesh::Mesh;
-use super::raster::EdgeRaster;
-use super::stage::{Depth, Uniforms};
 use super::target::Frame;
 use glam::Vec3;
 use std::f32::consts::FRAC_PI_2;
@@ -93,19 +87,24 @@ fn face_of(d: Vec3) -> usize {
 }
 
 impl ShadowMap {
-    /// Draws `mesh` from `light` into six faces of `size` x `size` texels. `near`
-    /// is the faces' near plane: geometry closer to the light casts no shadow.
-    pub fn render(mesh: &Mesh, light: &Light, size: u32, near: f32, filter: Shadows) -> ShadowMap {
-        let mut pipeline = Pipeline::<Depth, Perspective, EdgeRaster>::new();
-        let uniforms = Uniforms::lit(*light);
+    /// The map of a light at `light`, with six faces of `size` x `size` texels:
+    /// `draw_depth` draws the scene's 1/z as each face's camera sees it (the
+    /// caller's depth pass, so that this module needs no pipeline). `near` is the
+    /// faces' near plane: geometry closer to the light casts no shadow.
+    pub fn render(
+        light: Vec3,
+        size: u32,
+        near: f32,
+        filter: Shadows,
+        mut draw_depth: impl FnMut(&Camera) -> Frame,
+    ) -> ShadowMap {
         let faces = std::array::from_fn(|k| {
-            let camera = face_camera(light.position, k, size, near);
-            let mut frame = Frame::default();
-            pipeline.render(mesh, &camera, &uniforms, &mut frame);
+            let camera = face_camera(light, k, size, near);
+            let frame = draw_depth(&camera);
             (camera, frame)
         });
         ShadowMap {
-            light: light.position,
+            light,
             faces,
             filter,
         }
@@ -161,7 +160,12 @@ impl ShadowMap {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::pipeline::mesh::Triangle;
+    use crate::pipeline::draw::{Pipeline, Render};
+    use crate::pipeline::interpolate::Perspective;
+    use crate::pipeline::light::Light;
+    use crate::pipeline::mesh::{Mesh, Triangle};
+    use crate::pipeline::raster::EdgeRaster;
+    use crate::pipeline::stage::{Depth, Uniforms};
 
     #[test]
     fn each_direction_falls_in_the_face_that_looks_along_it() {
@@ -197,7 +201,17 @@ mod tests {
             power: Vec3::ONE,
             indirect: Vec3::ZERO,
         };
-        let map = ShadowMap::render(&mesh, &light, 256, 0.01, Shadows::Hard);
+        let depth_from = |camera: &Camera| {
+            let mut frame = Frame::default();
+            Pipeline::<Depth, Perspective, EdgeRaster>::new().render(
+                &mesh,
+                camera,
+                &Uniforms::lit(light),
+                &mut frame,
+            );
+            frame
+        };
+        let map = ShadowMap::render(light.position, 256, 0.01, Shadows::Hard, depth_from);
         let up = -Vec3::Y;
         // Under the square (its shadow reaches 0.5 from the centre at y = 2).
         assert_eq!(map.visibility(Vec3::new(0.0, 2.0, 0.0), up), 0.0);
@@ -207,7 +221,7 @@ mod tests {
         assert_eq!(map.visibility(Vec3::new(3.0, 2.0, -2.0), up), 1.0);
         assert_eq!(map.visibility(Vec3::new(0.1, 1.0, 0.1), up), 1.0);
         // Filtered: on the shadow's edge, part of the texels see the light.
-        let pcf = ShadowMap::render(&mesh, &light, 256, 0.01, Shadows::Pcf);
+        let pcf = ShadowMap::render(light.position, 256, 0.01, Shadows::Pcf, depth_from);
         let edge = pcf.visibility(Vec3::new(0.5, 2.0, 0.0), up);
         assert!(edge > 0.0 && edge < 1.0, "{edge}");
     }

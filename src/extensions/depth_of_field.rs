@@ -8,7 +8,7 @@
 //! the square of that half-width around it, read from a summed-area table, so the
 //! cost does not grow with the blur.
 
-use super::target::{pack, unpack, Frame};
+use crate::pipeline::target::{pack, unpack, Frame};
 use glam::Vec3;
 
 /// The widest blur, in pixels either side: beyond it a picture is a smear.
