@@ -1033,13 +1033,19 @@ fn main() -> ExitCode {
         }
         Err(e) => {
             // One line: clap's message up to its usage block, joined; the usage is in --help.
+            // clap's tips ("a similar argument exists: ...") follow a blank line: kept.
             let text = e.render().to_string();
-            let message: Vec<&str> = text
+            let mut message: Vec<&str> = text
                 .lines()
                 .take_while(|l| !l.trim().is_empty())
                 .map(str::trim)
                 .collect();
-            eprintln!("{} (see 'rasterlab --help')", message.join(" "));
+            message.extend(
+                text.lines()
+                    .map(str::trim)
+                    .filter(|l| l.starts_with("tip: ")),
+            );
+            eprintln!("{} (see 'rasterlab --help')", message.join("; "));
             return ExitCode::from(2);
         }
     };

@@ -367,6 +367,17 @@ fn export_checks_both_files_before_writing_either() {
 }
 
 #[test]
+fn a_missing_folder_is_named_without_the_temporary_file() {
+    let o = run(&["points", "--size", "8x6", "-o", "/nonexistent-folder/x.png"]);
+    refused(
+        &o,
+        1,
+        "cannot write /nonexistent-folder/x.png: No such file or directory (os error 2)",
+    );
+    assert!(!err(&o).contains("rasterlab-"), "{}", err(&o));
+}
+
+#[test]
 fn a_file_where_a_folder_goes_is_named_so() {
     let dir = temp_dir("not-a-folder");
     fs::write(dir.join("f"), "").unwrap();
@@ -519,4 +530,16 @@ fn a_black_image_is_told_apart_without_contradiction() {
         text.starts_with("black.png is not a lab 3 image: the closest stage, points (Figure 2), matches 100 % of the image's pixels within 16/255 but only 0 % of the pixels it draws; a lab 3 screenshot matches over 90 % of both."),
         "{text}"
     );
+}
+
+#[test]
+fn typos_get_a_suggestion_on_the_one_line() {
+    let o = run(&["pixel-light", "--afine"]);
+    refused(
+        &o,
+        2,
+        "error: unexpected argument '--afine' found; tip: a similar argument exists: '--affine'",
+    );
+    let o = run(&["pixl-light"]);
+    refused(&o, 2, "'pixel-light'");
 }

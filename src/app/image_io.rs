@@ -222,7 +222,13 @@ fn stage(
     target: &Path,
     write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
 ) -> Result<Staged, WriteError> {
-    let fail = |e: io::Error| WriteError::new(path, e.to_string());
+    // tempfile names its random file in errors ("... at path \"dir/.rasterlab-x.tmp\""):
+    // the user named `path`, which the message already holds.
+    let fail = |e: io::Error| {
+        let why = e.to_string();
+        let why = why.split(" at path \"").next().unwrap_or_default();
+        WriteError::new(path, why)
+    };
     let dir = match target.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),

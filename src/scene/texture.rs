@@ -66,10 +66,17 @@ pub fn load_texture(path: &Path) -> Result<Texture, String> {
         .map_err(|e| format!("texture {shown}: {e}"))?
         .to_rgb8();
     let (width, height) = image.dimensions();
-    let texels = image
-        .pixels()
-        .map(|p| Vec3::from(p.0.map(|c| c as f32 / 255.0)))
-        .collect();
+    let mut texels = Vec::new();
+    let n = width as usize * height as usize;
+    texels.try_reserve_exact(n).map_err(|_| {
+        let need = crate::pipeline::target::megabytes(n * std::mem::size_of::<Vec3>());
+        format!("texture {shown}: out of memory: its {width}x{height} texels need {need}")
+    })?;
+    texels.extend(
+        image
+            .pixels()
+            .map(|p| Vec3::from(p.0.map(|c| c as f32 / 255.0))),
+    );
     Texture::new(width, height, texels)
         .ok_or_else(|| format!("texture {shown}: the image is empty"))
 }
