@@ -663,10 +663,14 @@ fn check(a: &CheckArgs) -> Result<(), Failure> {
     };
     if let Some(CheckRows::Rows(r)) = &a.rows {
         let result = app::check::check_rows_file(&r.file, &r.vertices).map_err(failure)?;
-        if r.json {
-            return print_out(&format!("{}\n", result.json(&r.file.display().to_string())));
+        match r.json {
+            true => print_out(&format!("{}\n", result.json(&r.file.display().to_string())))?,
+            false => print_out(&result.text())?,
         }
-        return print_out(&result.text());
+        return match result.first_difference {
+            None => Ok(()),
+            Some(_) => Err(Failure::Differs),
+        };
     }
     let image = a
         .image
@@ -695,7 +699,10 @@ fn check(a: &CheckArgs) -> Result<(), Failure> {
     for path in written {
         eprintln!("wrote {}", path.display());
     }
-    Ok(())
+    match result.fitted {
+        Some(_) => Ok(()),
+        None => Err(Failure::Differs),
+    }
 }
 
 /// Prints to standard output; a reader that has gone away (`| head`) ends the
@@ -738,6 +745,9 @@ enum Failure {
     /// Standard output's reader went away (`| head`): nothing more to say, but
     /// the output is not whole.
     ClosedEarly,
+    /// `check` ran and said so, but found no lab 3 image, or rows other than the
+    /// handout's: exit code 3, so that a script can tell it from a failure.
+    Differs,
 }
 
 impl From<String> for Failure {
@@ -1066,5 +1076,6 @@ fn main() -> ExitCode {
             ExitCode::from(1)
         }
         Err(Failure::ClosedEarly) => ExitCode::from(1),
+        Err(Failure::Differs) => ExitCode::from(3),
     }
 }

@@ -1051,3 +1051,76 @@ fn random_sets_of_differences_are_all_named() {
     }
     assert!(failures.is_empty(), "{failures:#?}");
 }
+
+/// What students send that hid a lab 3 image: red and blue swapped, rasterlab's
+/// own focal length at another size, console output around printed rows; and
+/// the exit status a script branches on (0 explained, 3 not, 1 unreadable).
+#[test]
+fn swapped_channels_other_focal_lengths_and_pasted_rows_are_explained() {
+    use rasterlab::app::{self as app, image_io::write_image, Settings};
+    use rasterlab::{Figure, StageName};
+    let dir = temp_dir("check-slips");
+    let settings = Settings::default();
+    let (depth, _) = app::render(
+        Figure::of(StageName::Depth),
+        &cornell_box(),
+        &settings,
+        None,
+    );
+    let mut swapped = depth.clone();
+    for c in &mut swapped.color {
+        *c = (*c & 0x00ff00) | (*c >> 16 & 0xff) | (*c & 0xff) << 16;
+    }
+    write_image(&swapped, &dir.join("swapped.png")).unwrap();
+    let small = Settings {
+        width: 250,
+        height: 250,
+        ..settings
+    };
+    let (small, _) = app::render(Figure::of(StageName::Depth), &cornell_box(), &small, None);
+    write_image(&small, &dir.join("small.png")).unwrap();
+    write_image(&Frame::new(500, 500), &dir.join("black.png")).unwrap();
+    for (name, note) in [
+        (
+            "swapped.png",
+            "Note: red and blue are swapped in this image",
+        ),
+        (
+            "small.png",
+            "Note: checked with focal length 500, rasterlab's default, not the image's height 250",
+        ),
+    ] {
+        let o = rasterlab(&["check", dir.join(name).to_str().unwrap()]);
+        let text = String::from_utf8_lossy(&o.stdout);
+        assert_eq!(o.status.code(), Some(0), "{name}: {text}");
+        let lines: Vec<&str> = text.lines().collect();
+        assert!(lines[0].starts_with(note), "{name}: {text}");
+        assert!(
+            lines[1].starts_with("Your image is the handout's Figure 5"),
+            "{name}: {text}"
+        );
+    }
+    let o = rasterlab(&["check", dir.join("black.png").to_str().unwrap(), "--json"]);
+    assert_eq!(o.status.code(), Some(3));
+    assert!(String::from_utf8_lossy(&o.stdout).ends_with("\"interior_rmse\":null,\"notes\":[]}\n"));
+    let pasted = dir.join("pasted.txt");
+    let rows = app::rows_text(&[(10, 5), (5, 10), (15, 15)]);
+    std::fs::write(&pasted, format!("$ ./lab3\n{rows}Render time: 3 ms.\n")).unwrap();
+    let args = [
+        "check",
+        "rows",
+        pasted.to_str().unwrap(),
+        "10,5",
+        "5,10",
+        "15,15",
+    ];
+    let o = rasterlab(&args);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    std::fs::write(&pasted, "Start: (1,5). End: (2,5).\n").unwrap();
+    assert_eq!(rasterlab(&args).status.code(), Some(3));
+}

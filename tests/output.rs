@@ -180,14 +180,16 @@ fn a_closed_pipe_stops_quietly_and_fails() {
         &["pixel-light", "-o", "-"][..],
         &["rows", "10,5", "5,10", "15,15"][..],
     ] {
-        let mut child = Command::new(bin())
+        // A pipe whose reading end is closed before the command starts: its
+        // first write fails, however soon it comes.
+        let (reader, writer) = std::io::pipe().unwrap();
+        drop(reader);
+        let o = Command::new(bin())
             .args(args)
-            .stdout(Stdio::piped())
+            .stdout(writer)
             .stderr(Stdio::piped())
-            .spawn()
+            .output()
             .unwrap();
-        drop(child.stdout.take());
-        let o = child.wait_with_output().unwrap();
         assert_eq!(o.status.code(), Some(1), "{args:?}: {}", err(&o));
         assert_eq!(err(&o), "", "{args:?}");
     }

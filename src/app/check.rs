@@ -64,6 +64,15 @@ pub fn read_screenshot(path: &Path) -> Result<Frame, String> {
     Ok(frame)
 }
 
+/// `frame` with its red and blue channels exchanged.
+fn swap_red_blue(frame: &Frame) -> Frame {
+    let mut out = frame.clone();
+    for c in &mut out.color {
+        *c = (*c & 0x00ff00) | (*c >> 16 & 0xff) | (*c & 0xff) << 16;
+    }
+    out
+}
+
 /// The largest side checked: a screenshot is a window, and each hypothesis draws
 /// several frames of its size.
 pub const MAX_CHECK_SIDE: u32 = 4096;
@@ -99,7 +108,27 @@ pub fn check_image_file(
     setup.power = options.light_power;
     setup.indirect = options.indirect;
     setup.fit_light = options.fit_light;
-    let check = check_image(&observed, &setup);
+    let mut check = check_image(&observed, &setup);
+    // Two slips that hide a lab 3 image, tried when it is not one: red and blue
+    // swapped (an SDL surface read in the other byte order), and rasterlab's own
+    // focal length of 500 on an image that is not 500 high.
+    if check.fitted.is_none() {
+        let swapped = swap_red_blue(&observed);
+        let again = check_image(&swapped, &setup);
+        if again.fitted.is_some() {
+            check = again;
+            check.notes.push("red and blue are swapped in this image (a pixel format read in the wrong byte order, a common SDL slip); it was checked with them swapped back".into());
+        }
+    }
+    if check.fitted.is_none() && options.focal.is_none() && h != 500 {
+        let mut ours = setup.clone();
+        ours.camera.focal = 500.0;
+        let again = check_image(&observed, &ours);
+        if again.fitted.is_some() {
+            check = again;
+            check.notes.push(format!("checked with focal length 500, rasterlab's default, not the image's height {h}: give --focal to say which"));
+        }
+    }
     let mut written = Vec::new();
     if let Some(dir) = &options.out {
         crate::app::create_folder(dir)?;

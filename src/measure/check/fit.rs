@@ -465,5 +465,6 @@ pub fn check_image(observed: &Frame, setup: &Setup) -> ImageCheck {
         remaining,
         expected,
         light_searched: setup.fit_light,
+        notes: Vec::new(),
     }
 }

@@ -616,4 +616,7 @@ pub struct ImageCheck {
     pub expected: Frame,
     /// Whether the light's position was searched for (`--fit-light`).
     pub light_searched: bool,
+    /// What was done to the image before checking it, in words (red and blue
+    /// swapped back, a focal length other than assumed).
+    pub notes: Vec<String>,
 }

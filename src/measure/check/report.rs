@@ -57,6 +57,9 @@ impl ImageCheck {
     /// The report, plain words first.
     pub fn text(&self, name: &str) -> String {
         let mut out = String::new();
+        for note in &self.notes {
+            let _ = writeln!(out, "Note: {note}");
+        }
         let Some(f) = &self.fitted else {
             let c = &self.closest;
             let (all, drawn) = (c.errors.near * 100.0, c.errors.near_drawn * 100.0);
@@ -77,7 +80,7 @@ impl ImageCheck {
             );
             let _ = writeln!(
                 out,
-                "If it is one, check its size ({}x{}) and the camera; for a light elsewhere give --light or --fit-light.",
+                "If it is one, check its size ({}x{}), the focal length (--focal; the image's height unless given) and the camera; for a light elsewhere give --light or --fit-light.",
                 self.width, self.height
             );
             return out;
@@ -214,6 +217,15 @@ impl ImageCheck {
 
     /// The report as one JSON object, for a teacher's script.
     pub fn json(&self, name: &str) -> String {
+        let mut out = self.json_fields(name);
+        // The notes last, as one more field.
+        out.pop();
+        let notes: Vec<String> = self.notes.iter().map(|n| json_string(n)).collect();
+        let _ = write!(out, ",\"notes\":[{}]}}", notes.join(","));
+        out
+    }
+
+    fn json_fields(&self, name: &str) -> String {
         let mut out = String::from("{");
         let _ = write!(out, "\"image\":{}", json_string(name));
         let _ = write!(out, ",\"width\":{},\"height\":{}", self.width, self.height);

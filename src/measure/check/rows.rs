@@ -69,11 +69,16 @@ pub fn row_text(r: &Row) -> String {
 /// `rasterlab rows` prints it, all on one line as the handout shows it, with or
 /// without the words and punctuation. A line whose count of numbers is not a
 /// multiple of four cannot be read as rows and is an error naming it.
+///
+/// Pasted console output is read too: when some line holds `Start`, the lines
+/// that hold neither `Start` nor `End` (`Render time: 3 ms.`, a prompt) are
+/// other output and left out.
 pub fn parse_rows(text: &str) -> Result<Vec<Row>, String> {
     let mut numbers = Vec::new();
     let mut lines = 0;
+    let worded = text.lines().any(|l| l.contains("Start"));
     for (i, line) in text.lines().enumerate() {
-        if line.trim().is_empty() {
+        if line.trim().is_empty() || (worded && !line.contains("Start") && !line.contains("End")) {
             continue;
         }
         lines += 1;
@@ -393,6 +398,14 @@ mod tests {
                 format!("line 1: '{token}' is not a whole number of pixels"),
             );
         }
+        // Console output around the rows is left out.
+        assert_eq!(
+            parse_rows(
+                "$ ./lab3\nRender time: 3 ms.\nStart: (10,5). End: (10,5).\nRender time: 2 ms.\n"
+            )
+            .unwrap(),
+            vec![[10, 5, 10, 5]]
+        );
         // A full stop after a number ends a sentence: "(10,5). End".
         assert_eq!(
             parse_rows("Start: (10,5). End: (10,5).").unwrap(),
