@@ -1124,3 +1124,73 @@ fn swapped_channels_other_focal_lengths_and_pasted_rows_are_explained() {
     std::fs::write(&pasted, "Start: (1,5). End: (2,5).\n").unwrap();
     assert_eq!(rasterlab(&args).status.code(), Some(3));
 }
+
+/// `frame` inside a window: a title bar of `bar` rows of light grey above it and
+/// borders of `border` pixels of dark grey around it, all scaled by `scale`.
+fn in_window(frame: &Frame, bar: u32, border: u32, scale: u32) -> Frame {
+    let (w, h) = (frame.width + 2 * border, frame.height + bar + border);
+    let mut out = Frame::new(w * scale, h * scale);
+    for y in 0..h * scale {
+        for x in 0..w * scale {
+            let (u, v) = (x / scale, y / scale);
+            let c = if v < bar {
+                0x00dc_dce1
+            } else if u < border || u >= w - border || v >= h - border {
+                0x005a_5a5a
+            } else {
+                frame.color[((v - bar) * frame.width + u - border) as usize]
+            };
+            out.color[(y * out.width + x) as usize] = c;
+        }
+    }
+    out
+}
+
+/// A window screenshot is cut to the render it holds, and the report says what
+/// was left out; a render of another shape goes through as it is.
+#[test]
+fn the_render_is_found_inside_a_window_screenshot() {
+    use rasterlab::app::check::{check_image_file, CheckOptions};
+    use rasterlab::app::{self as app, image_io::write_image, Settings};
+    use rasterlab::{Figure, StageName};
+    let dir = temp_dir("check-window");
+    let draw = |stage| {
+        app::render(
+            Figure::of(stage),
+            &cornell_box(),
+            &Settings::default(),
+            None,
+        )
+        .0
+    };
+    let (depth, lit) = (draw(StageName::Depth), draw(StageName::PixelLight));
+    let cases = [
+        ("bar.png", in_window(&depth, 30, 0, 1), 5, "the render is the 500x500 square at (0, 30) of this 500x530 screenshot; left out: 30 pixels above (a window's title bar and borders)"),
+        ("window.png", in_window(&lit, 30, 3, 1), 7, "the render is the 500x500 square at (3, 30) of this 506x533 screenshot; left out: 30 pixels above, 3 pixels below, 3 pixels left of, 3 pixels right of (a window's title bar and borders)"),
+        ("hidpi.png", in_window(&depth, 30, 0, 2), 5, "the render is the 1000x1000 square at (0, 60) of this 1000x1060 screenshot; left out: 60 pixels above (a window's title bar and borders); it was halved to 500x500 (a HiDPI screenshot at twice the size)"),
+    ];
+    for (name, shot, figure, note) in cases {
+        write_image(&shot, &dir.join(name)).unwrap();
+        let (check, _) = check_image_file(&dir.join(name), &CheckOptions::default()).unwrap();
+        assert_eq!(check.notes, [note], "{name}");
+        let fitted = check.fitted.expect(name);
+        assert_eq!(fitted.hypothesis.figure(), figure, "{name}");
+        assert!(
+            fitted.variants().is_empty(),
+            "{name}: {:?}",
+            fitted.variants()
+        );
+    }
+    // 640 x 480 with f = 480: the box between black bands, which are the render's.
+    let wide = Settings {
+        width: 640,
+        height: 480,
+        focal: 480.0,
+        ..Settings::default()
+    };
+    let (frame, _) = app::render(Figure::of(StageName::Depth), &cornell_box(), &wide, None);
+    write_image(&frame, &dir.join("wide.png")).unwrap();
+    let (check, _) = check_image_file(&dir.join("wide.png"), &CheckOptions::default()).unwrap();
+    assert!(check.notes.is_empty(), "{:?}", check.notes);
+    assert_eq!(check.fitted.map(|f| f.hypothesis.figure()), Some(5));
+}

@@ -4,6 +4,7 @@
 use crate::app::image_io::{write_image, WriteError};
 use crate::measure::check::check_image;
 use crate::measure::check::image::{ImageCheck, Setup};
+use crate::measure::check::locate::locate;
 use crate::measure::check::rows::{check_rows, parse_rows, RowsCheck};
 use crate::measure::figure::StageName;
 use crate::measure::heat::heat_map_picture;
@@ -82,7 +83,17 @@ pub fn check_image_file(
     path: &Path,
     options: &CheckOptions,
 ) -> Result<(ImageCheck, Vec<PathBuf>), CheckError> {
-    let observed = read_screenshot(path).map_err(CheckError::Run)?;
+    let mut observed = read_screenshot(path).map_err(CheckError::Run)?;
+    // A window screenshot: the render inside it, unless the command line fixes
+    // the size or the camera (then the image is taken as it is).
+    let fixed = options.size.is_some() || options.focal.is_some() || options.camera.is_some();
+    let mut located = None;
+    if !fixed && observed.width != observed.height {
+        located = locate(&observed);
+    }
+    if let Some(l) = &located {
+        observed = l.frame.clone();
+    }
     let (w, h) = (observed.width, observed.height);
     if let Some((sw, sh)) = options.size {
         if (sw, sh) != (w, h) {
@@ -128,6 +139,9 @@ pub fn check_image_file(
             check = again;
             check.notes.push(format!("checked with focal length 500, rasterlab's default, not the image's height {h}: give --focal to say which"));
         }
+    }
+    if let Some(l) = located {
+        check.notes.insert(0, l.note);
     }
     let mut written = Vec::new();
     if let Some(dir) = &options.out {

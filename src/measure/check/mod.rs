@@ -12,6 +12,7 @@
 
 pub mod fit;
 pub mod image;
+pub mod locate;
 pub mod report;
 pub mod rows;
 pub mod student;
