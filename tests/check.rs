@@ -1194,3 +1194,52 @@ fn the_render_is_found_inside_a_window_screenshot() {
     assert!(check.notes.is_empty(), "{:?}", check.notes);
     assert_eq!(check.fitted.map(|f| f.hypothesis.figure()), Some(5));
 }
+
+/// A light moved far from the handout's (a public solution's, at (-0.6, 0.2,
+/// 0.5) with P = 5.1) is found by --fit-light's coarse grid and search, P and N
+/// exact; without the search, P and N stay physical: never negative.
+#[test]
+fn a_light_moved_far_is_found_and_light_is_never_negative() {
+    use rasterlab::app::check::{check_image_file, CheckOptions};
+    use rasterlab::app::{self as app, image_io::write_image, Settings};
+    use rasterlab::{Figure, StageName};
+    let dir = temp_dir("check-moved-light");
+    let moved = Settings {
+        light: Vec3::new(-0.6, 0.2, 0.5),
+        light_power: 5.1,
+        ..Settings::default()
+    };
+    let (frame, _) = app::render(
+        Figure::of(StageName::PixelLight),
+        &cornell_box(),
+        &moved,
+        None,
+    );
+    let shot = dir.join("moved.png");
+    write_image(&frame, &shot).unwrap();
+    let fit = CheckOptions {
+        fit_light: true,
+        ..CheckOptions::default()
+    };
+    let (check, _) = check_image_file(&shot, &fit).unwrap();
+    let f = check.fitted.expect("a lab 3 image");
+    assert_eq!(f.hypothesis.figure(), 7);
+    assert!((f.light - moved.light).length() < 0.02, "{:?}", f.light);
+    assert!(
+        (f.shading.power / 5.1 - 1.0).abs() < 0.01,
+        "{}",
+        f.shading.power
+    );
+    assert!(
+        (f.shading.indirect / 0.5 - 1.0).abs() < 0.01,
+        "{}",
+        f.shading.indirect
+    );
+    let (check, _) = check_image_file(&shot, &CheckOptions::default()).unwrap();
+    let c = check.fitted.unwrap_or(check.closest);
+    assert!(
+        c.shading.power >= 0.0 && c.shading.indirect >= 0.0,
+        "{:?}",
+        c.shading
+    );
+}

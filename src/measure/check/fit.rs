@@ -55,14 +55,32 @@ pub(super) fn fit_light(
                 sby += b * y;
             }
         }
+        // Light is never negative: each unknown is at least 0, and where the
+        // free solution has one below, the best on that edge of the quadrant
+        // (the other unknown alone) is taken instead.
+        let n_alone = |p: f64| ((sby - p * sab) / sbb).max(0.0);
+        let p_alone = |n: f64| ((say - n * sab) / saa).max(0.0);
+        let residual = |p: f64, n: f64| {
+            p * p * saa + 2.0 * p * n * sab + n * n * sbb - 2.0 * p * say - 2.0 * n * sby
+        };
         let solved = match (power, indirect) {
             (Some(p), Some(n)) => Some((p as f64, n as f64)),
-            (Some(p), None) => (sbb > 0.0).then(|| (p as f64, (sby - p as f64 * sab) / sbb)),
-            (None, Some(n)) => (saa > 0.0).then(|| ((say - n as f64 * sab) / saa, n as f64)),
+            (Some(p), None) => (sbb > 0.0).then(|| (p as f64, n_alone(p as f64))),
+            (None, Some(n)) => (saa > 0.0).then(|| (p_alone(n as f64), n as f64)),
             (None, None) => {
                 let det = saa * sbb - sab * sab;
-                (det.abs() > 1e-12 * (saa * sbb).max(1e-300))
-                    .then(|| ((say * sbb - sby * sab) / det, (sby * saa - say * sab) / det))
+                let free = (det.abs() > 1e-12 * (saa * sbb).max(1e-300))
+                    .then(|| ((say * sbb - sby * sab) / det, (sby * saa - say * sab) / det));
+                match free {
+                    Some((p, n)) if p >= 0.0 && n >= 0.0 => Some((p, n)),
+                    Some(_) if saa > 0.0 && sbb > 0.0 => {
+                        let edges = [(0.0, n_alone(0.0)), (p_alone(0.0), 0.0)];
+                        edges
+                            .into_iter()
+                            .min_by(|a, b| residual(a.0, a.1).total_cmp(&residual(b.0, b.1)))
+                    }
+                    _ => None,
+                }
             }
         };
         match solved {
@@ -397,6 +415,35 @@ pub(super) fn search_light(
     relit(&start, observed, setup, base.0)
 }
 
+/// Where a search for the light starts: the best of a coarse grid of 125
+/// positions over the box and in front of it (5 along each axis), and the
+/// given start, so that a light moved far from the handout's is not looked for
+/// in the valley next to it. P and N are fitted at each.
+fn coarse_light(observed: &Frame, setup: &Setup, start: Fitted) -> (Fitted, f64) {
+    let xs = [-0.8, -0.4, 0.0, 0.4, 0.8];
+    let ys = [-0.9, -0.5, -0.1, 0.3, 0.7];
+    let zs = [-2.0, -1.2, -0.6, 0.0, 0.6];
+    let mut best = (
+        start.light,
+        light_score(&start, observed, setup, start.light),
+    );
+    for &x in &xs {
+        for &y in &ys {
+            for &z in &zs {
+                let light = Vec3::new(x, y, z);
+                let e = light_score(&start, observed, setup, light);
+                if e < best.1 {
+                    best = (light, e);
+                }
+            }
+        }
+    }
+    match best.0 == start.light {
+        true => (start, best.1),
+        false => (relit(&start, observed, setup, best.0), best.1),
+    }
+}
+
 /// Checks `observed` against every hypothesis `setup` allows.
 pub fn check_image(observed: &Frame, setup: &Setup) -> ImageCheck {
     let light = setup.light;
@@ -421,6 +468,18 @@ pub fn check_image(observed: &Frame, setup: &Setup) -> ImageCheck {
     // the difference in shade. Then the variants, each with the light refitted.
     let search = setup.fit_light && best.hypothesis.lit();
     if search {
+        // Each lit stage as the handout draws it gets the coarse grid: under the
+        // handout's light a moved light can make the wrong one look best.
+        let starts = first
+            .iter()
+            .filter(|h| h.lit() && (h.affine == h.stage.affine_by_default()))
+            .map(|&h| quick_fit(h, observed, setup, light))
+            .chain(std::iter::once(best));
+        best = starts
+            .map(|f| coarse_light(observed, setup, f))
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .map(|(f, _)| f)
+            .expect("the best so far is among the starts");
         best = search_light(observed, setup, best, 0.1, 300);
     }
     best = climb(best, observed, setup);
