@@ -1243,3 +1243,39 @@ fn a_light_moved_far_is_found_and_light_is_never_negative() {
         c.shading
     );
 }
+
+/// A screenshot taken after walking around: the camera is fitted to the walls'
+/// colours (measured: 0.020, 0.013 and 0.020 off along x, y and z, 0.25 and
+/// 0.13 degrees off in yaw and pitch), and the image explained
+/// from there, with the options that reproduce the pose in the report.
+#[test]
+fn a_moved_camera_is_found() {
+    use rasterlab::app::check::{check_image_file, CheckOptions};
+    use rasterlab::app::{self as app, image_io::write_image, Settings};
+    use rasterlab::{Figure, StageName};
+    let dir = temp_dir("check-moved-camera");
+    let walked = Settings {
+        camera: Vec3::new(0.3, -0.2, -4.5),
+        yaw: 8.0,
+        pitch: -5.0,
+        ..Settings::default()
+    };
+    let (frame, _) = app::render(Figure::of(StageName::Depth), &cornell_box(), &walked, None);
+    let shot = dir.join("walked.png");
+    write_image(&frame, &shot).unwrap();
+    let (check, _) = check_image_file(&shot, &CheckOptions::default()).unwrap();
+    assert_eq!(
+        check.fitted.as_ref().map(|f| f.hypothesis.figure()),
+        Some(5)
+    );
+    let c = check.camera.expect("a fitted camera");
+    let off = (c.position - walked.camera).abs();
+    assert!(off.max_element() < 0.025, "{c:?}");
+    assert!((c.yaw.to_degrees() - 8.0).abs() < 0.5, "{c:?}");
+    assert!((c.pitch.to_degrees() + 5.0).abs() < 0.5, "{c:?}");
+    assert!(
+        check.notes[0].starts_with("the camera is not at the handout's place; fitted at --camera "),
+        "{:?}",
+        check.notes
+    );
+}

@@ -5,6 +5,7 @@ use crate::app::image_io::{write_image, WriteError};
 use crate::measure::check::check_image;
 use crate::measure::check::image::{ImageCheck, Setup};
 use crate::measure::check::locate::locate;
+use crate::measure::check::pose::fit_pose;
 use crate::measure::check::rows::{check_rows, parse_rows, RowsCheck};
 use crate::measure::figure::StageName;
 use crate::measure::heat::heat_map_picture;
@@ -63,6 +64,16 @@ pub fn read_screenshot(path: &Path) -> Result<Frame, String> {
         *c = (p[0] as u32) << 16 | (p[1] as u32) << 8 | p[2] as u32;
     }
     Ok(frame)
+}
+
+/// The share of pixels whose walls a fitted camera must put in place (see
+/// [`crate::measure::check::pose`]); the walked-around screenshots tried get 99.7 %
+/// and more.
+const MIN_POSE_SCORE: f64 = 0.97;
+
+/// `v` to three decimals, as the options that reproduce a pose are written.
+fn round3(v: f32) -> f32 {
+    (v * 1000.0).round() / 1000.0
 }
 
 /// `frame` with its red and blue channels exchanged.
@@ -138,6 +149,35 @@ pub fn check_image_file(
         if again.fitted.is_some() {
             check = again;
             check.notes.push(format!("checked with focal length 500, rasterlab's default, not the image's height {h}: give --focal to say which"));
+        }
+    }
+    // A screenshot taken after walking around: the camera fitted to the
+    // walls' colours, then the whole check from there.
+    // (Not on an image almost all black: there are no walls to place.)
+    let lit = observed
+        .color
+        .iter()
+        .filter(|&&c| c & 0x00f8_f8f8 != 0)
+        .count();
+    if check.fitted.is_none() && options.camera.is_none() && lit * 20 > observed.color.len() {
+        let pose = fit_pose(&observed, setup.camera);
+        let mut moved = setup.clone();
+        moved.camera = pose.camera;
+        // A pose that puts fewer walls in place is a search that found nothing.
+        let again = (pose.score >= MIN_POSE_SCORE).then(|| check_image(&observed, &moved));
+        if let Some(again) = again.filter(|a| a.fitted.is_some()) {
+            check = again;
+            let c = pose.camera;
+            check.notes.push(format!(
+                "the camera is not at the handout's place; fitted at --camera {},{},{} --yaw {} --pitch {} ({:.1} % of the walls' colours in place)",
+                round3(c.position.x),
+                round3(c.position.y),
+                round3(c.position.z),
+                round3(c.yaw.to_degrees()),
+                round3(c.pitch.to_degrees()),
+                pose.score * 100.0
+            ));
+            check.camera = Some(c);
         }
     }
     if let Some(l) = located {

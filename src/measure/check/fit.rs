@@ -525,5 +525,6 @@ pub fn check_image(observed: &Frame, setup: &Setup) -> ImageCheck {
         expected,
         light_searched: setup.fit_light,
         notes: Vec::new(),
+        camera: None,
     }
 }

@@ -619,4 +619,6 @@ pub struct ImageCheck {
     /// What was done to the image before checking it, in words (red and blue
     /// swapped back, a focal length other than assumed).
     pub notes: Vec<String>,
+    /// The camera fitted to the image when it is not the handout's.
+    pub camera: Option<crate::pipeline::Camera>,
 }

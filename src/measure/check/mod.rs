@@ -13,6 +13,7 @@
 pub mod fit;
 pub mod image;
 pub mod locate;
+pub mod pose;
 pub mod report;
 pub mod rows;
 pub mod student;
