@@ -88,6 +88,11 @@ enum Command {
     /// `rasterlab check shot.png` reads a PNG or BMP of any size; `rasterlab check
     /// rows FILE 10,5 5,10 15,15` compares a printed ComputePolygonRows output
     /// instead. docs/check.md shows a report.
+    ///
+    /// Exit status, as diff and cmp: 0 when the image is the handout's figure
+    /// within 2/255 at every pixel (or the rows are the handout's), 1 when it
+    /// differs or is not a lab 3 image, 2 for trouble (bad usage, an input that
+    /// cannot be read, an output that cannot be written).
     Check(CheckArgs),
 }
 
@@ -657,9 +662,10 @@ struct CheckRowsArgs {
 /// `rasterlab check`: a screenshot, or with `rows` a rows printout.
 fn check(a: &CheckArgs) -> Result<(), Failure> {
     use app::check::CheckError;
+    // In the spirit of diff and cmp: 0 the handout's, 1 different, 2 trouble.
     let failure = |e: CheckError| match e {
         CheckError::Usage(m) => Failure::Usage(m),
-        CheckError::Run(m) => Failure::Run(m),
+        CheckError::Run(m) => Failure::Trouble(m),
     };
     if let Some(CheckRows::Rows(r)) = &a.rows {
         let result = app::check::check_rows_file(&r.file, &r.vertices).map_err(failure)?;
@@ -699,9 +705,10 @@ fn check(a: &CheckArgs) -> Result<(), Failure> {
     for path in written {
         eprintln!("wrote {}", path.display());
     }
-    match result.fitted {
-        Some(_) => Ok(()),
-        None => Err(Failure::Differs),
+    // The handout's figure within 2/255 at every pixel, or not.
+    match result.fitted.is_some() && result.before.off == 0.0 {
+        true => Ok(()),
+        false => Err(Failure::Differs),
     }
 }
 
@@ -745,9 +752,13 @@ enum Failure {
     /// Standard output's reader went away (`| head`): nothing more to say, but
     /// the output is not whole.
     ClosedEarly,
-    /// `check` ran and said so, but found no lab 3 image, or rows other than the
-    /// handout's: exit code 3, so that a script can tell it from a failure.
+    /// `check` ran and said so, but the image is not the handout's figure within
+    /// 2/255 (or not a lab 3 image), or the rows are not the handout's: exit
+    /// code 1, as diff and cmp say "different".
     Differs,
+    /// `check` could not read its input or write its output: exit code 2, as
+    /// diff and cmp say "trouble".
+    Trouble(String),
 }
 
 impl From<String> for Failure {
@@ -1076,6 +1087,10 @@ fn main() -> ExitCode {
             ExitCode::from(1)
         }
         Err(Failure::ClosedEarly) => ExitCode::from(1),
-        Err(Failure::Differs) => ExitCode::from(3),
+        Err(Failure::Differs) => ExitCode::from(1),
+        Err(Failure::Trouble(message)) => {
+            eprintln!("error: {message}");
+            ExitCode::from(2)
+        }
     }
 }
