@@ -705,8 +705,12 @@ fn check(a: &CheckArgs) -> Result<(), Failure> {
     for path in written {
         eprintln!("wrote {}", path.display());
     }
-    // The handout's figure within 2/255 at every pixel, or not.
-    match result.fitted.is_some() && result.before.off == 0.0 {
+    // The handout's figure (of the stage asked for) within 2/255 at every
+    // pixel, or not.
+    let asked = |f: &rasterlab::measure::check::image::Fitted| {
+        a.stage.is_none_or(|s| f.hypothesis.stage == s)
+    };
+    match result.fitted.as_ref().is_some_and(asked) && result.before.off == 0.0 {
         true => Ok(()),
         false => Err(Failure::Differs),
     }

@@ -1295,3 +1295,37 @@ fn a_moved_camera_is_found() {
         check.notes
     );
 }
+
+/// `--stage pixel-light` on Figure 4 is contradicted, not forced into "Figure 7
+/// at light power 0": the report says so and names what the image is; the exit
+/// status says it is not what was asked.
+#[test]
+fn a_lit_stage_asked_for_on_an_unlit_image_is_contradicted() {
+    use rasterlab::app::{self as app, image_io::write_image, Settings};
+    use rasterlab::{Figure, StageName};
+    let dir = temp_dir("check-contradicted");
+    let (frame, _) = app::render(
+        Figure::of(StageName::Filled),
+        &cornell_box(),
+        &Settings::default(),
+        None,
+    );
+    let shot = dir.join("filled.png");
+    write_image(&frame, &shot).unwrap();
+    let o = rasterlab(&[
+        "check",
+        shot.to_str().unwrap(),
+        "--stage",
+        "pixel-light",
+        "--json",
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    let json = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        json.contains("\"lab3\":true,\"figure\":4,\"stage\":\"filled\""),
+        "{json}"
+    );
+    assert!(json.contains("\"notes\":[\"--stage pixel-light does not fit this image: the best pixel-light explanation has no direct light at all (P = 0)"), "{json}");
+    let o = rasterlab(&["check", shot.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0));
+}

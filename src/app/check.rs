@@ -6,7 +6,7 @@ use crate::measure::check::check_image;
 use crate::measure::check::image::{ImageCheck, Setup};
 use crate::measure::check::locate::locate;
 use crate::measure::check::pose::fit_pose;
-use crate::measure::check::rows::{check_rows, parse_rows, RowsCheck};
+use crate::measure::check::rows::{check_rows, parse_rows_skipping, RowsCheck};
 use crate::measure::figure::StageName;
 use crate::measure::heat::heat_map_picture;
 use crate::pipeline::Frame;
@@ -180,6 +180,23 @@ pub fn check_image_file(
             check.camera = Some(c);
         }
     }
+    // A lit stage asked for on an image without direct light is contradicted,
+    // not forced: P = 0 would call any flat image "Figure 7".
+    let unlit = |c: &ImageCheck| {
+        c.fitted
+            .as_ref()
+            .is_some_and(|f| f.hypothesis.lit() && f.shading.power <= 1e-3)
+    };
+    if let Some(stage) = options.stage.filter(|_| unlit(&check)) {
+        let mut any = setup.clone();
+        any.stage = None;
+        let again = check_image(&observed, &any);
+        let name = stage.name();
+        check = again;
+        check.notes.push(format!(
+            "--stage {name} does not fit this image: the best {name} explanation has no direct light at all (P = 0); it was checked against every stage instead"
+        ));
+    }
     if let Some(l) = located {
         check.notes.insert(0, l.note);
     }
@@ -223,6 +240,10 @@ pub fn check_rows_file(path: &Path, vertices: &[(i32, i32)]) -> Result<RowsCheck
     } else {
         path.display().to_string()
     };
-    let rows = parse_rows(&text).map_err(|e| CheckError::Run(format!("{name}: {e}")))?;
-    Ok(check_rows(vertices, rows))
+    let (rows, skipped) =
+        parse_rows_skipping(&text).map_err(|e| CheckError::Run(format!("{name}: {e}")))?;
+    Ok(RowsCheck {
+        skipped,
+        ..check_rows(vertices, rows)
+    })
 }

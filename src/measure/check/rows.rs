@@ -74,11 +74,21 @@ pub fn row_text(r: &Row) -> String {
 /// that hold neither `Start` nor `End` (`Render time: 3 ms.`, a prompt) are
 /// other output and left out.
 pub fn parse_rows(text: &str) -> Result<Vec<Row>, String> {
+    parse_rows_skipping(text).map(|(rows, _)| rows)
+}
+
+/// [`parse_rows`], with how many lines were left out as not rows.
+pub fn parse_rows_skipping(text: &str) -> Result<(Vec<Row>, usize), String> {
     let mut numbers = Vec::new();
     let mut lines = 0;
+    let mut skipped = 0;
     let worded = text.lines().any(|l| l.contains("Start"));
     for (i, line) in text.lines().enumerate() {
-        if line.trim().is_empty() || (worded && !line.contains("Start") && !line.contains("End")) {
+        if line.trim().is_empty() {
+            continue;
+        }
+        if worded && !line.contains("Start") && !line.contains("End") {
+            skipped += 1;
             continue;
         }
         lines += 1;
@@ -97,10 +107,11 @@ pub fn parse_rows(text: &str) -> Result<Vec<Row>, String> {
     if lines == 0 {
         return Err("the rows text is empty".into());
     }
-    Ok(numbers
+    let rows = numbers
         .chunks_exact(4)
         .map(|c| [c[0], c[1], c[2], c[3]])
-        .collect())
+        .collect();
+    Ok((rows, skipped))
 }
 
 /// The whole numbers in a line, with their signs; anything else separates them.
@@ -170,6 +181,8 @@ pub struct RowsCheck {
     pub exact: Vec<RowsVariant>,
     /// When none does: the variant with the fewest differing rows, and that count.
     pub closest: Option<(RowsVariant, usize)>,
+    /// Lines of the printout that were not rows (console output around them).
+    pub skipped: usize,
 }
 
 /// Rows that differ between two listings, a missing or extra row counting as one.
@@ -205,6 +218,7 @@ pub fn check_rows(vertices: &[(i32, i32)], student: Vec<Row>) -> RowsCheck {
         differing,
         exact,
         closest,
+        skipped: 0,
     }
 }
 
@@ -242,6 +256,15 @@ impl RowsCheck {
     /// The report, plain words first.
     pub fn text(&self) -> String {
         let mut out = String::new();
+        if self.skipped > 0 {
+            let _ = writeln!(
+                out,
+                "(skipped {} line{} that {} not rows)",
+                self.skipped,
+                plural(self.skipped),
+                if self.skipped == 1 { "is" } else { "are" }
+            );
+        }
         let n = self.handout.len();
         match self.first_difference {
             None => {
@@ -331,6 +354,9 @@ impl RowsCheck {
                 );
             }
             (None, None) => out.push_str(",\"reproduced\":false,\"variants\":[]"),
+        }
+        if self.skipped > 0 {
+            let _ = write!(out, ",\"skipped\":{}", self.skipped);
         }
         out.push('}');
         out
