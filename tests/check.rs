@@ -1189,6 +1189,18 @@ fn the_render_is_found_inside_a_window_screenshot() {
         write_image(&shot, &dir.join(name)).unwrap();
         let (check, _) = check_image_file(&dir.join(name), &CheckOptions::default()).unwrap();
         assert_eq!(check.notes, [note], "{name}");
+        // Where the render sat: after the borders and the bar, at the shot's scale.
+        let scale = shot.width / 500;
+        let border = (shot.width / scale - 500) / 2;
+        let expected = [border * scale, 30 * scale, 500 * scale, 500 * scale];
+        assert_eq!(check.crop, Some(expected), "{name}");
+        let [x, y, w, h] = expected;
+        assert!(
+            check
+                .json(name)
+                .contains(&format!("\"crop\":[{x},{y},{w},{h}]")),
+            "{name}"
+        );
         let fitted = check.fitted.expect(name);
         assert_eq!(fitted.hypothesis.figure(), figure, "{name}");
         assert!(
@@ -1293,6 +1305,13 @@ fn a_moved_camera_is_found() {
         check.notes[0].starts_with("the camera is not at the handout's place; fitted at --camera "),
         "{:?}",
         check.notes
+    );
+    let json = check.json("walked.png");
+    assert!(
+        json.contains("\"camera\":[")
+            && json.contains("\"yaw\":")
+            && json.contains("\"focal\":500"),
+        "{json}"
     );
 }
 

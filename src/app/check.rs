@@ -199,6 +199,7 @@ pub fn check_image_file(
     }
     if let Some(l) = located {
         check.notes.insert(0, l.note);
+        check.crop = Some(l.crop);
     }
     let mut written = Vec::new();
     if let Some(dir) = &options.out {

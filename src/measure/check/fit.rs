@@ -526,5 +526,6 @@ pub fn check_image(observed: &Frame, setup: &Setup) -> ImageCheck {
         light_searched: setup.fit_light,
         notes: Vec::new(),
         camera: None,
+        crop: None,
     }
 }

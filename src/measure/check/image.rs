@@ -621,4 +621,6 @@ pub struct ImageCheck {
     pub notes: Vec<String>,
     /// The camera fitted to the image when it is not the handout's.
     pub camera: Option<crate::pipeline::Camera>,
+    /// Where the render was found inside a screenshot: x, y, width, height.
+    pub crop: Option<[u32; 4]>,
 }

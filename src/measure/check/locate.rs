@@ -22,6 +22,8 @@ pub struct Located {
     pub frame: Frame,
     /// In words, for the report: what was left out, and any scaling.
     pub note: String,
+    /// The render's place in the screenshot: x, y, width, height.
+    pub crop: [u32; 4],
 }
 
 /// How much shorter than the screenshot's shorter side the render may be: two
@@ -107,7 +109,12 @@ pub fn locate(shot: &Frame) -> Option<Located> {
     if scale == 2 {
         note += &format!("; it was halved to {side}x{side} (a HiDPI screenshot at twice the size)");
     }
-    Some(Located { frame: cut, note })
+    let crop = [left, top, side * scale, side * scale];
+    Some(Located {
+        frame: cut,
+        note,
+        crop,
+    })
 }
 
 /// The handout's seven figures at `side` x `side`, focal length `side`.

@@ -218,8 +218,23 @@ impl ImageCheck {
     /// The report as one JSON object, for a teacher's script.
     pub fn json(&self, name: &str) -> String {
         let mut out = self.json_fields(name);
-        // The notes last, as one more field.
+        // The camera, the crop and the notes last, as more fields.
         out.pop();
+        if let Some(c) = self.camera {
+            let _ = write!(
+                out,
+                ",\"camera\":[{},{},{}],\"yaw\":{},\"pitch\":{},\"focal\":{}",
+                three_digits(c.position.x),
+                three_digits(c.position.y),
+                three_digits(c.position.z),
+                three_digits(c.yaw.to_degrees()),
+                three_digits(c.pitch.to_degrees()),
+                c.focal
+            );
+        }
+        if let Some([x, y, w, h]) = self.crop {
+            let _ = write!(out, ",\"crop\":[{x},{y},{w},{h}]");
+        }
         let notes: Vec<String> = self.notes.iter().map(|n| json_string(n)).collect();
         let _ = write!(out, ",\"notes\":[{}]}}", notes.join(","));
         out
