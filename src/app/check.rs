@@ -131,29 +131,39 @@ pub fn check_image_file(
     setup.indirect = options.indirect;
     setup.fit_light = options.fit_light;
     let mut check = check_image(&observed, &setup);
-    // Two slips that hide a lab 3 image, tried when it is not one: red and blue
-    // swapped (an SDL surface read in the other byte order), and rasterlab's own
-    // focal length of 500 on an image that is not 500 high.
-    if check.fitted.is_none() {
-        let swapped = swap_red_blue(&observed);
-        let again = check_image(&swapped, &setup);
+    // Slips that hide a lab 3 image, tried in turn while it is not one; the
+    // first that explains it is kept, with the image and setup it was checked
+    // with (so the heat map and any later step see the same image).
+    let attempt = |image: Frame, tried: Setup, note: String, check: &mut ImageCheck| {
+        let again = check_image(&image, &tried);
         if again.fitted.is_some() {
-            check = again;
-            check.notes.push("red and blue are swapped in this image (a pixel format read in the wrong byte order, a common SDL slip); it was checked with them swapped back".into());
+            *check = again;
+            check.notes.push(note);
+            Some((image, tried))
+        } else {
+            None
+        }
+    };
+    // Red and blue swapped: an SDL surface read in the other byte order.
+    if check.fitted.is_none() {
+        let note = "red and blue are swapped in this image (a pixel format read in the wrong byte order, a common SDL slip); it was checked with them swapped back".to_string();
+        if let Some((image, _)) = attempt(swap_red_blue(&observed), setup.clone(), note, &mut check)
+        {
+            observed = image;
         }
     }
+    // rasterlab's own focal length of 500 on an image that is not 500 high.
     if check.fitted.is_none() && options.focal.is_none() && h != 500 {
         let mut ours = setup.clone();
         ours.camera.focal = 500.0;
-        let again = check_image(&observed, &ours);
-        if again.fitted.is_some() {
-            check = again;
-            check.notes.push(format!("checked with focal length 500, rasterlab's default, not the image's height {h}: give --focal to say which"));
+        let note = format!("checked with focal length 500, rasterlab's default, not the image's height {h}: give --focal to say which");
+        if let Some((_, tried)) = attempt(observed.clone(), ours, note, &mut check) {
+            setup = tried;
         }
     }
     // A screenshot taken after walking around: the camera fitted to the
-    // walls' colours, then the whole check from there.
-    // (Not on an image almost all black: there are no walls to place.)
+    // walls' colours, then the whole check from there (not on an image almost
+    // all black: there are no walls to place).
     let lit = observed
         .color
         .iter()
@@ -161,14 +171,12 @@ pub fn check_image_file(
         .count();
     if check.fitted.is_none() && options.camera.is_none() && lit * 20 > observed.color.len() {
         let pose = fit_pose(&observed, setup.camera);
-        let mut moved = setup.clone();
-        moved.camera = pose.camera;
         // A pose that puts fewer walls in place is a search that found nothing.
-        let again = (pose.score >= MIN_POSE_SCORE).then(|| check_image(&observed, &moved));
-        if let Some(again) = again.filter(|a| a.fitted.is_some()) {
-            check = again;
+        if pose.score >= MIN_POSE_SCORE {
+            let mut moved = setup.clone();
+            moved.camera = pose.camera;
             let c = pose.camera;
-            check.notes.push(format!(
+            let note = format!(
                 "the camera is not at the handout's place; fitted at --camera {},{},{} --yaw {} --pitch {} ({:.1} % of the walls' colours in place)",
                 round3(c.position.x),
                 round3(c.position.y),
@@ -176,8 +184,11 @@ pub fn check_image_file(
                 round3(c.yaw.to_degrees()),
                 round3(c.pitch.to_degrees()),
                 pose.score * 100.0
-            ));
-            check.camera = Some(c);
+            );
+            if let Some((_, tried)) = attempt(observed.clone(), moved, note, &mut check) {
+                check.camera = Some(c);
+                setup = tried;
+            }
         }
     }
     // A lit stage asked for on an image without direct light is contradicted,

@@ -624,3 +624,12 @@ pub struct ImageCheck {
     /// Where the render was found inside a screenshot: x, y, width, height.
     pub crop: Option<[u32; 4]>,
 }
+
+impl ImageCheck {
+    /// Whether the image is the handout's figure (of `stage`, when one is
+    /// asked for) within [`THRESHOLD`] at every pixel: `check`'s exit status 0.
+    pub fn is_handouts_figure(&self, stage: Option<StageName>) -> bool {
+        let asked = |f: &Fitted| stage.is_none_or(|s| f.hypothesis.stage == s);
+        self.fitted.as_ref().is_some_and(asked) && self.before.off == 0.0
+    }
+}

@@ -109,9 +109,15 @@ pub fn fit_pose(observed: &Frame, start: Camera) -> Pose {
     let seen: Vec<Option<[f32; 3]>> = observed.color.iter().map(|&c| chroma(c)).collect();
     let mesh = cornell_box();
     let uniforms = Uniforms::lit(Light::handout());
-    let depth = Figure::of(StageName::Depth);
+    // One pipeline and one frame for the whole search, drawn into again and
+    // again (a few thousand poses).
+    let pipeline = std::cell::RefCell::new(Figure::of(StageName::Depth).pipeline_for(&mesh));
+    let frame = std::cell::RefCell::new(Frame::default());
     let score_at = |camera: &Camera, stride: usize| -> f64 {
-        let drawn = depth.render(&mesh, camera, &uniforms);
+        let mut drawn = frame.borrow_mut();
+        pipeline
+            .borrow_mut()
+            .render(&mesh, camera, &uniforms, &mut drawn);
         let pairs = drawn.color.iter().zip(&seen).step_by(stride);
         let (mut same, mut all) = (0usize, 0usize);
         for (&c, &s) in pairs {

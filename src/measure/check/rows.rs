@@ -324,6 +324,11 @@ impl RowsCheck {
 }
 
 impl RowsCheck {
+    /// Whether the printout is the handout's rows: `check rows`' exit status 0.
+    pub fn is_handouts(&self) -> bool {
+        self.first_difference.is_none()
+    }
+
     /// The result as one JSON object: whether the rows are the handout's, the first
     /// differing row (from 1), and the variants that reproduce them exactly (the
     /// fewest changes first) or, when none does, the closest one.
