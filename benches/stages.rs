@@ -6,6 +6,7 @@
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use rasterlab::app::Settings;
+use rasterlab::measure::figure::Inputs;
 use rasterlab::measure::figure::Raster;
 use rasterlab::pipeline::raster::bresenham::walk_line;
 use rasterlab::pipeline::raster::Lines;
@@ -21,7 +22,7 @@ fn bench(c: &mut Criterion, group: &str, mesh: &Mesh, size: (u32, u32), figures:
         focal: size.1 as f32,
         ..Settings::default()
     };
-    let (camera, uniforms) = (settings.camera(), settings.uniforms());
+    let (camera, uniforms) = (settings.camera(), Inputs::lit(settings.light()));
     let mut g = c.benchmark_group(group);
     g.sample_size(20);
     g.throughput(Throughput::Elements((size.0 * size.1) as u64));
@@ -31,7 +32,7 @@ fn bench(c: &mut Criterion, group: &str, mesh: &Mesh, size: (u32, u32), figures:
             let mut pipeline = figure.pipeline_for(mesh);
             let mut frame = Frame::default();
             g.bench_function(figure.label(), |b| {
-                b.iter(|| pipeline.render(mesh, &camera, &uniforms, &mut frame))
+                b.iter(|| pipeline.render(&uniforms, mesh, &camera, &mut frame))
             });
         }
     }
@@ -91,7 +92,7 @@ fn lines(c: &mut Criterion) {
     }
     let mesh = cornell_box();
     let settings = Settings::default();
-    let (camera, uniforms) = (settings.camera(), settings.uniforms());
+    let (camera, uniforms) = (settings.camera(), Inputs::lit(settings.light()));
     g.throughput(Throughput::Elements(500 * 500));
     for stage in [StageName::Wireframe, StageName::Filled] {
         for lines in [Lines::Interpolate, Lines::Bresenham] {
@@ -99,7 +100,7 @@ fn lines(c: &mut Criterion) {
             let mut pipeline = figure.pipeline_for(&mesh);
             let mut frame = Frame::default();
             g.bench_function(format!("box 500x500, {}", figure.label()), |b| {
-                b.iter(|| pipeline.render(&mesh, &camera, &uniforms, &mut frame))
+                b.iter(|| pipeline.render(&uniforms, &mesh, &camera, &mut frame))
             });
         }
     }

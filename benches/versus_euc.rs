@@ -15,6 +15,7 @@ use euc::rasterizer::{BackfaceCullingDisabled, Triangles};
 use euc::{Interpolate, Pipeline as _, Target as _};
 use glam::Vec3;
 use rasterlab::app::Settings;
+use rasterlab::measure::figure::Inputs;
 use rasterlab::measure::figure::Raster;
 use rasterlab::pipeline::camera::Projection;
 use rasterlab::pipeline::target::pack;
@@ -209,7 +210,7 @@ fn run(case: &Case) -> (String, usize) {
         },
         ..Settings::default()
     };
-    let (camera, uniforms) = (settings.camera(), settings.uniforms());
+    let (camera, uniforms) = (settings.camera(), Inputs::lit(settings.light()));
     let figure = Figure::of(case.stage);
     let mut ours: Vec<_> = [Raster::Rows, Raster::Edge]
         .map(|r| {
@@ -228,7 +229,7 @@ fn run(case: &Case) -> (String, usize) {
             let start = Instant::now();
             if which < 2 {
                 let (pipeline, frame) = &mut ours[which];
-                pipeline.render(&case.mesh, &camera, &uniforms, frame);
+                pipeline.render(&uniforms, &case.mesh, &camera, frame);
                 std::hint::black_box(&frame.color);
             } else {
                 euc.render(case.stage);

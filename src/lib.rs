@@ -25,5 +25,5 @@ pub mod pipeline;
 pub mod scene;
 
 pub use measure::figure::{Figure, StageName};
-pub use pipeline::{interpolate, Camera, Frame, Light, Mesh, Pixel, Triangle, Uniforms};
+pub use pipeline::{interpolate, Camera, Frame, Light, Mesh, Pixel, Triangle};
 pub use scene::cornell_box;

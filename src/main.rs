@@ -4,12 +4,12 @@ use clap::parser::ValueSource;
 use clap::{ArgMatches, Args, CommandFactory, FromArgMatches, Parser, Subcommand};
 use glam::Vec3;
 use rasterlab::app::{self, controls, explain, parse, viewer, Settings};
+use rasterlab::extensions::shadow::Shadows;
+use rasterlab::extensions::texture::Filter;
 use rasterlab::measure::figure::Raster;
 use rasterlab::measure::raytrace;
 use rasterlab::pipeline::draw::Cull;
 use rasterlab::pipeline::raster::Lines;
-use rasterlab::pipeline::shadow::Shadows;
-use rasterlab::pipeline::Filter;
 use rasterlab::scene::texture::{
     apply_normal_map, apply_parallax, apply_texture, parse_normal_map, TextureSpec,
 };
@@ -732,7 +732,7 @@ fn render(stage: StageName, args: &Render) -> Result<(), Failure> {
     let (scene, settings) = args.scene.resolve()?;
     let runs = args.time.map(|n| n as usize);
     let (timing, stats) =
-        app::render_to_file(figure, &scene.mesh, &settings, &out, runs, args.buffer)?;
+        app::render_to_file(figure, scene.model(), &settings, &out, runs, args.buffer)?;
     if let Some(t) = timing {
         eprintln!("render: {t}");
     }
@@ -785,7 +785,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
         Command::PixelLight(a) => render(StageName::PixelLight, a),
         Command::All(a) => {
             let (scene, settings) = a.scene.resolve()?;
-            let written = app::render_all(&scene.mesh, &settings, &a.out)?;
+            let written = app::render_all(scene.model(), &settings, &a.out)?;
             for path in written {
                 eprintln!("wrote {}", path.display());
             }
@@ -814,7 +814,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 ..options
             };
             let timing = app::raytrace_to_file(
-                &scene.mesh,
+                scene.model(),
                 &settings,
                 &options,
                 &out,
@@ -850,7 +850,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             let (scene, settings) = a.scene.resolve()?;
             let options = viewer::Options {
                 settings,
-                mesh: scene.mesh,
+                model: scene,
                 scene: a.scene.scene.clone(),
                 texture: a.scene.texture.clone(),
                 normal_map: a.scene.normal_map.clone(),
@@ -886,7 +886,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             let out = a.out.clone().unwrap_or_else(|| PathBuf::from(name));
             let (scene, settings) = a.scene.resolve()?;
             let frames =
-                app::animate_to_file(figure, &scene.mesh, &settings, &out, a.delay as u32)?;
+                app::animate_to_file(figure, scene.model(), &settings, &out, a.delay as u32)?;
             eprintln!("wrote {} ({frames} frames)", app::image_io::describe(&out));
             Ok(())
         }

@@ -3,6 +3,7 @@
 //! figure, with both rasterizers, on the box and on a finer mesh.
 
 use rasterlab::app::Settings;
+use rasterlab::measure::figure::Inputs;
 use rasterlab::measure::figure::Raster;
 use rasterlab::scene::{cornell_box, subdivide};
 use rasterlab::{Figure, Frame};
@@ -43,7 +44,7 @@ static GLOBAL: Counting = Counting;
 #[test]
 fn a_frame_after_the_first_allocates_nothing() {
     let s = Settings::default();
-    let (camera, uniforms) = (s.camera(), s.uniforms());
+    let (camera, uniforms) = (s.camera(), Inputs::lit(s.light()));
     for mesh in [cornell_box(), subdivide(&cornell_box(), 8)] {
         for figure in Figure::FIGURES {
             for raster in [Raster::Rows, Raster::Edge] {
@@ -53,12 +54,12 @@ fn a_frame_after_the_first_allocates_nothing() {
                 // The first frame allocates its buffers: the counter sees them.
                 ALLOCATIONS.store(0, Ordering::Relaxed);
                 COUNTING.store(true, Ordering::Relaxed);
-                pipeline.render(&mesh, &camera, &uniforms, &mut frame);
+                pipeline.render(&uniforms, &mesh, &camera, &mut frame);
                 COUNTING.store(false, Ordering::Relaxed);
                 assert!(ALLOCATIONS.load(Ordering::Relaxed) > 0);
                 ALLOCATIONS.store(0, Ordering::Relaxed);
                 COUNTING.store(true, Ordering::Relaxed);
-                pipeline.render(&mesh, &camera, &uniforms, &mut frame);
+                pipeline.render(&uniforms, &mesh, &camera, &mut frame);
                 COUNTING.store(false, Ordering::Relaxed);
                 let n = ALLOCATIONS.load(Ordering::Relaxed);
                 assert_eq!(n, 0, "{} on {} triangles", figure.label(), mesh.faces.len());

@@ -14,7 +14,7 @@ fn draw(dof: Option<DepthOfField>) -> rasterlab::Frame {
         dof,
         ..Settings::default()
     };
-    app::render(Figure::of(StageName::PixelLight), &scene.mesh, &s, None).0
+    app::render(Figure::of(StageName::PixelLight), &scene, &s, None).0
 }
 
 #[test]

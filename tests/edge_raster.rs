@@ -190,16 +190,16 @@ fn edge_depth_agrees_with_a_ray_cast_through_pixel_centres() {
     // snapping distance (1/256 pixel, so 1/128 to be safe) of a projected edge, or
     // where two surfaces meet at one depth and the two break the tie differently.
     let s = rasterlab::app::Settings::default();
-    let (camera, uniforms) = (s.camera(), s.uniforms());
+    let (camera, light) = (s.camera(), s.light());
     let mesh = rasterlab::cornell_box();
     let edge = rasterlab::Figure::of(rasterlab::StageName::Depth)
         .with_raster(rasterlab::measure::figure::Raster::Edge)
-        .render(&mesh, &camera, &uniforms);
+        .render(&mesh, &camera, light);
     let options = Options {
         shading: Shading::Flat,
         ..Options::default()
     };
-    let reference = raytrace(&mesh, &camera, &uniforms.light, &options).frame;
+    let reference = raytrace(&mesh, &camera, &light, &options).frame;
     // Distance in pixels from a centre to the nearest projected edge.
     let p = camera.projection();
     let edges: Vec<((f32, f32), (f32, f32))> = mesh

@@ -6,8 +6,8 @@ mod common;
 use rasterlab::app::image_io::read_rgb;
 use rasterlab::app::overview::figure_one;
 use rasterlab::app::{self, Settings, OVERVIEW_FILE};
-use rasterlab::pipeline::shadow::Shadows;
-use rasterlab::pipeline::Filter;
+use rasterlab::extensions::shadow::Shadows;
+use rasterlab::extensions::texture::Filter;
 use rasterlab::{cornell_box, Figure};
 use std::path::Path;
 
@@ -119,6 +119,7 @@ fn committed_pictures_match_the_code() {
     let scene = rasterlab::scene::Scene {
         name: "sphere".into(),
         mesh: sphere,
+        maps: Default::default(),
         is_box: false,
         pitch: 0.0,
         warnings: Vec::new(),
@@ -137,7 +138,7 @@ fn committed_pictures_match_the_code() {
         rasterlab::StageName::VertexLight,
         rasterlab::StageName::PixelLight,
     ] {
-        let (frame, _) = app::render(Figure::of(stage), &scene.mesh, &settings, None);
+        let (frame, _) = app::render(Figure::of(stage), &scene, &settings, None);
         assert_picture(&steps.join(format!("models-{}.png", stage.name())), &frame);
     }
     // rasterlab pixel-light --texture checker [--affine | --filter bilinear]
@@ -161,7 +162,7 @@ fn committed_pictures_match_the_code() {
             filter,
             ..Settings::default()
         };
-        let (frame, _) = app::render(figure, &textured.mesh, &settings, None);
+        let (frame, _) = app::render(figure, &textured, &settings, None);
         assert_picture(&steps.join(format!("texture-{name}.png")), &frame);
     }
     // rasterlab pixel-light --texture checker --dof 4.001,0.05 (and 2.2,0.05)
@@ -173,7 +174,7 @@ fn committed_pictures_match_the_code() {
             }),
             ..Settings::default()
         };
-        let (frame, _) = app::render(Figure::of(pixel_light), &textured.mesh, &settings, None);
+        let (frame, _) = app::render(Figure::of(pixel_light), &textured, &settings, None);
         assert_picture(&steps.join(format!("dof-{name}.png")), &frame);
     }
     // rasterlab pixel-light [--shadows [--pcf]] --light-power 8; raytrace --shadows
@@ -205,10 +206,10 @@ fn committed_pictures_match_the_code() {
     let mut bumped = rasterlab::scene::parse_scene("cornell").unwrap();
     rasterlab::scene::texture::apply_normal_map(&mut bumped, rasterlab::scene::texture::bumps());
     let s = Settings::default();
-    let (frame, _) = app::render(Figure::of(pixel_light), &bumped.mesh, &s, None);
+    let (frame, _) = app::render(Figure::of(pixel_light), &bumped, &s, None);
     assert_picture(&steps.join("normal-map-bumps.png"), &frame);
     let traced = rasterlab::measure::raytrace::raytrace(
-        &bumped.mesh,
+        &bumped,
         &s.camera(),
         &s.light(),
         &Default::default(),
@@ -229,7 +230,7 @@ fn committed_pictures_match_the_code() {
         if parallax {
             rasterlab::scene::texture::apply_parallax(&mut scene);
         }
-        let (frame, _) = app::render(Figure::of(pixel_light), &scene.mesh, &close, None);
+        let (frame, _) = app::render(Figure::of(pixel_light), &scene, &close, None);
         assert_picture(&steps.join(format!("parallax-{name}.png")), &frame);
     }
     // rasterlab depth --buffer

@@ -108,7 +108,7 @@ proptest! {
         let path = dir.join("m.obj");
         fs::write(&path, &obj).unwrap();
         match rasterlab::scene::read_obj(&path) {
-            Ok((mesh, warnings)) => {
+            Ok((mesh, _, warnings)) => {
                 prop_assert!(!mesh.faces.is_empty());
                 let n = mesh.positions.len() as u32;
                 prop_assert!(mesh.faces.iter().all(|f| f.vertices.iter().all(|&i| i < n)));

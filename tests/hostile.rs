@@ -498,8 +498,8 @@ fn what_a_model_asks_for_and_does_not_get_is_said() {
         ]
     );
     // -s 2 2 1 scales the coordinates: the file name is what follows the options.
-    let mesh = rasterlab::scene::load_obj(&dir.join("m.obj")).unwrap();
-    let tiles = mesh
+    let (mesh, maps, _) = rasterlab::scene::read_obj(&dir.join("m.obj")).unwrap();
+    let tiles = maps
         .materials
         .iter()
         .position(|m| m.texture.is_some())

@@ -3,22 +3,27 @@
 
 use glam::Vec3;
 use rasterlab::app::{self, Settings};
+use rasterlab::extensions::texture::Texture;
 use rasterlab::measure::figure::Raster;
 use rasterlab::measure::raytrace::{raytrace, Options};
-use rasterlab::pipeline::{Frame, Texture};
+use rasterlab::pipeline::Frame;
 use rasterlab::scene::parse_scene;
 use rasterlab::scene::texture::{apply_normal_map, bumps};
+use rasterlab::scene::Scene;
 use rasterlab::{Figure, StageName};
 
-fn mapped_box(map: Texture) -> rasterlab::pipeline::Mesh {
+fn mapped_box(map: Texture) -> Scene {
     let mut scene = parse_scene("cornell").unwrap();
     apply_normal_map(&mut scene, map);
-    scene.mesh
+    scene
 }
 
-fn pixel_light(mesh: &rasterlab::pipeline::Mesh, raster: Raster) -> Frame {
+fn pixel_light<'a>(
+    model: impl Into<rasterlab::extensions::texture::Model<'a>>,
+    raster: Raster,
+) -> Frame {
     let figure = Figure::of(StageName::PixelLight).with_raster(raster);
-    app::render(figure, mesh, &Settings::default(), None).0
+    app::render(figure, model, &Settings::default(), None).0
 }
 
 fn gap(a: u32, b: u32) -> u32 {
@@ -107,7 +112,7 @@ fn parallax_moves_what_the_domes_show() {
         if parallax {
             apply_parallax(&mut scene);
         }
-        app::render(Figure::of(StageName::PixelLight), &scene.mesh, &s, None).0
+        app::render(Figure::of(StageName::PixelLight), &scene, &s, None).0
     };
     let (off, on) = (draw(false), draw(true));
     let moved = off

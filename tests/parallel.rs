@@ -3,6 +3,7 @@
 
 use rasterlab::app::parallel::Parallel;
 use rasterlab::app::Settings;
+use rasterlab::measure::figure::Inputs;
 use rasterlab::measure::figure::Raster;
 use rasterlab::scene::parse_scene;
 use rasterlab::{Figure, Frame};
@@ -25,14 +26,14 @@ fn one_two_and_seven_threads_draw_the_same_bytes() {
             camera: pose_camera,
             ..settings
         };
-        let (camera, uniforms) = (s.camera(), s.uniforms());
+        let (camera, uniforms) = (s.camera(), Inputs::lit(s.light()));
         for figure in Figure::FIGURES {
             for raster in [Raster::Rows, Raster::Edge] {
                 let figure = figure.with_raster(raster);
                 let draw = |threads: usize| {
                     let mut p = Parallel::new(figure, &scene.mesh, threads).unwrap();
                     let mut frame = Frame::default();
-                    p.render(&scene.mesh, &camera, &uniforms, &mut frame);
+                    p.render(&uniforms, &scene.mesh, &camera, &mut frame);
                     (frame, p.stats())
                 };
                 let (one, stats) = draw(1);

@@ -5,8 +5,9 @@
 
 use glam::Vec3;
 use proptest::prelude::*;
+use rasterlab::measure::figure::Inputs;
 use rasterlab::pipeline::Target;
-use rasterlab::{Camera, Figure, Frame, Light, Mesh, StageName, Triangle, Uniforms};
+use rasterlab::{Camera, Figure, Frame, Light, Mesh, StageName, Triangle};
 
 fn coord() -> impl Strategy<Value = f32> {
     prop_oneof![
@@ -57,12 +58,12 @@ fn view() -> impl Strategy<Value = Figure> {
     prop::sample::select(Figure::FIGURES.to_vec())
 }
 
-fn uniforms() -> Uniforms<'static> {
-    Uniforms::lit(Light::handout())
+fn uniforms() -> Inputs<'static> {
+    Inputs::lit(Light::handout())
 }
 
 fn draw(view: Figure, scene: &[Triangle], camera: &Camera) -> Frame {
-    view.render(&Mesh::from_triangles(scene), camera, &uniforms())
+    view.render(&Mesh::from_triangles(scene), camera, Light::handout())
 }
 
 /// The same image drawn as two bands of rows, split at row `split`, each into
@@ -71,7 +72,7 @@ fn draw_in_bands(view: Figure, scene: &[Triangle], camera: &Camera, split: u32) 
     let mesh = Mesh::from_triangles(scene);
     let mut whole = Frame::default();
     let mut pipeline = view.pipeline_for(&mesh);
-    pipeline.render(&mesh, camera, &uniforms(), &mut whole); // sizes the buffers
+    pipeline.render(&uniforms(), &mesh, camera, &mut whole); // sizes the buffers
     let (w, h) = (camera.width, camera.height);
     let split = split.min(h);
     let has_depth = !whole.depth.is_empty();
@@ -91,7 +92,7 @@ fn draw_in_bands(view: Figure, scene: &[Triangle], camera: &Camera, split: u32) 
             color: Some(color),
             depth: has_depth.then_some(depth),
         };
-        pipeline.draw(&mesh, camera, &uniforms(), &mut target);
+        pipeline.draw(&uniforms(), &mesh, camera, &mut target);
     }
     whole.depth = depth;
     whole
@@ -136,8 +137,8 @@ proptest! {
                 let mut frame = Frame::default();
                 let mut bigger = camera;
                 bigger.width += 7;
-                pipeline.render(&other, &bigger, &uniforms(), &mut frame);
-                pipeline.render(&mesh, &camera, &uniforms(), &mut frame);
+                pipeline.render(&uniforms(), &other, &bigger, &mut frame);
+                pipeline.render(&uniforms(), &mesh, &camera, &mut frame);
                 frame
             })
             .join()

@@ -2,9 +2,9 @@
 //! ray tracer's shadow rays.
 
 use rasterlab::app::{self, Settings};
+use rasterlab::extensions::shadow::Shadows;
 use rasterlab::measure::figure::Raster;
 use rasterlab::measure::raytrace::{raytrace, Options};
-use rasterlab::pipeline::shadow::Shadows;
 use rasterlab::{cornell_box, Figure, Frame, StageName};
 
 fn pixel_light(shadows: Shadows, raster: Raster) -> Frame {

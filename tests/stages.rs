@@ -292,7 +292,7 @@ fn the_ragged_seam_is_the_depth_tests_strict_greater_than() {
         ..mesh.clone()
     };
     let s = rasterlab::app::Settings::default();
-    let draw = |m: &Mesh| Figure::of(Depth).render(m, &s.camera(), &s.uniforms());
+    let draw = |m: &Mesh| Figure::of(Depth).render(m, &s.camera(), s.light());
     let (left, back, both) = (
         draw(&only([2, 3])),
         draw(&only([8, 9])),
@@ -320,11 +320,10 @@ fn bresenham_wireframe_moves_pixels_by_one_at_most() {
     use rasterlab::pipeline::raster::Lines;
     let mesh = cornell_box();
     let camera = Camera::handout(500, 500);
-    let uniforms = rasterlab::app::Settings::default().uniforms();
     let draw = |lines| {
         Figure::of(Wireframe)
             .with_lines(lines)
-            .render(&mesh, &camera, &uniforms)
+            .render(&mesh, &camera, rasterlab::Light::handout())
     };
     let (interpolate, bresenham) = (draw(Lines::Interpolate), draw(Lines::Bresenham));
     let lit = |f: &rasterlab::Frame| -> BTreeSet<(i32, i32)> {

@@ -2,21 +2,22 @@
 //! texture coordinates, the two filters, a model's MTL map_Kd, and bad input.
 
 use rasterlab::app::{self, Settings};
-use rasterlab::pipeline::{Filter, Frame};
+use rasterlab::extensions::texture::{Filter, Model};
+use rasterlab::pipeline::Frame;
 use rasterlab::scene::texture::{apply_texture, TextureSpec};
-use rasterlab::scene::{load_obj, parse_scene};
+use rasterlab::scene::{load_obj, parse_scene, read_obj, Scene};
 use rasterlab::{Figure, StageName};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-fn checker_box() -> rasterlab::pipeline::Mesh {
+fn checker_box() -> Scene {
     let mut scene = parse_scene("cornell").unwrap();
     apply_texture(&mut scene, &TextureSpec::Checker).unwrap();
-    scene.mesh
+    scene
 }
 
-fn render(figure: Figure, mesh: &rasterlab::pipeline::Mesh, settings: &Settings) -> Frame {
-    app::render(figure, mesh, settings, None).0
+fn render<'a>(figure: Figure, model: impl Into<Model<'a>>, settings: &Settings) -> Frame {
+    app::render(figure, model, settings, None).0
 }
 
 fn differing(a: &Frame, b: &Frame, rows: std::ops::Range<usize>) -> usize {
@@ -151,14 +152,22 @@ fn write_textured_square(dir: &Path, texture: Option<&str>) -> PathBuf {
 #[test]
 fn a_models_map_kd_is_its_texture() {
     let dir = temp_dir("map-kd");
-    let mesh = load_obj(&write_textured_square(&dir, Some("tiles.png"))).unwrap();
-    assert_eq!(mesh.textures.len(), 1);
+    let (mesh, maps, _) = read_obj(&write_textured_square(&dir, Some("tiles.png"))).unwrap();
+    assert_eq!(maps.images.len(), 1);
+    let mut scene = Scene {
+        name: "square".into(),
+        mesh,
+        maps,
+        is_box: false,
+        pitch: 0.0,
+        warnings: Vec::new(),
+    };
     let s = Settings {
         indirect: 1.0,
         light_power: 0.0,
         ..Settings::default()
     };
-    let frame = render(Figure::of(StageName::PixelLight), &mesh, &s);
+    let frame = render(Figure::of(StageName::PixelLight), &scene, &s);
     // The square spans pixels 83 to 416 (f / 3 = 166.7 about the centre).
     let at = |x: usize, y: usize| frame.color[y * 500 + x];
     let rgb = |c: u32| [(c >> 16) & 255, (c >> 8) & 255, c & 255];
@@ -167,15 +176,8 @@ fn a_models_map_kd_is_its_texture() {
     assert_eq!(rgb(at(150, 350)), [0, 0, 255], "bottom left: blue");
     assert_eq!(rgb(at(350, 350)), [255, 255, 255], "bottom right: white");
     // --texture none leaves the model's own texture out: Kd's grey.
-    let mut scene = rasterlab::scene::Scene {
-        name: "square".into(),
-        mesh,
-        is_box: false,
-        pitch: 0.0,
-        warnings: Vec::new(),
-    };
     apply_texture(&mut scene, &TextureSpec::parse("none")).unwrap();
-    let frame = render(Figure::of(StageName::PixelLight), &scene.mesh, &s);
+    let frame = render(Figure::of(StageName::PixelLight), &scene, &s);
     assert_eq!(rgb(frame.color[150 * 500 + 150]), [128, 128, 128]);
     // Without map_Kd, the same square is Kd's grey.
     std::fs::remove_file(dir.join("square.obj")).unwrap();

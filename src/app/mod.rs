@@ -12,7 +12,8 @@ pub mod parse;
 pub mod viewer;
 
 use crate::extensions::depth_of_field::DepthOfField;
-use crate::measure::figure::Figure;
+use crate::extensions::texture::{Filter, Model};
+use crate::measure::figure::{Figure, Inputs};
 use crate::measure::plot::Canvas;
 use crate::measure::timing::{time_runs, Timing};
 use crate::measure::{raytrace, report, stress};
@@ -21,7 +22,7 @@ use crate::pipeline::draw::Stats;
 use crate::pipeline::interpolate::Pixel;
 use crate::pipeline::raster::rows::{compute_polygon_rows, Rows};
 use crate::pipeline::raster::Bounds;
-use crate::pipeline::{Camera, Filter, Frame, Light, Mesh, Uniforms};
+use crate::pipeline::{Camera, Frame, Light, Mesh};
 use crate::scene::Scene;
 use glam::Vec3;
 use image_io::{write_image, write_text, WriteError};
@@ -102,64 +103,58 @@ impl Settings {
         }
     }
 
-    /// The light alone, for a mesh without textures.
-    pub fn uniforms(&self) -> Uniforms<'static> {
-        Uniforms {
+    /// What a frame's stage reads: the light, and the maps of `model` read
+    /// with `--filter` from the camera's position.
+    pub fn inputs<'a>(&self, model: Model<'a>) -> Inputs<'a> {
+        Inputs {
+            maps: model.maps,
             filter: self.filter,
             eye: self.camera,
-            ..Uniforms::lit(self.light())
-        }
-    }
-
-    /// The light, and the textures of `mesh` read with `--filter`.
-    pub fn uniforms_for<'a>(&self, mesh: &'a Mesh) -> Uniforms<'a> {
-        Uniforms {
-            textures: &mesh.textures,
-            ..self.uniforms()
+            ..Inputs::lit(self.light())
         }
     }
 }
 
 /// Draws `figure` of `mesh`; with `runs`, draws it that many times and reports the
 /// timing (drawing only, no file I/O).
-pub fn render(
+pub fn render<'a>(
     figure: Figure,
-    mesh: &Mesh,
+    model: impl Into<Model<'a>>,
     settings: &Settings,
     runs: Option<usize>,
 ) -> (Frame, Option<Timing>) {
-    let (frame, timing, _) = render_with_stats(figure, mesh, settings, runs);
+    let (frame, timing, _) = render_with_stats(figure, model.into(), settings, runs);
     (frame, timing)
 }
 
 /// [`render`], with what the frame did.
 pub fn render_with_stats(
     figure: Figure,
-    mesh: &Mesh,
+    model: Model,
     settings: &Settings,
     runs: Option<usize>,
 ) -> (Frame, Option<Timing>, Stats) {
-    render_into(figure, mesh, settings, runs, Frame::default())
+    render_into(figure, model, settings, runs, Frame::default())
 }
 
 /// [`render_with_stats`] into `frame`, whose buffers are reused when they have
 /// the image's size.
 fn render_into(
     figure: Figure,
-    mesh: &Mesh,
+    model: Model,
     settings: &Settings,
     runs: Option<usize>,
     mut frame: Frame,
 ) -> (Frame, Option<Timing>, Stats) {
     // No threads to be had: one band, on this thread.
-    let mut pipeline = parallel::Parallel::new(figure, mesh, settings.threads)
-        .or_else(|_| parallel::Parallel::new(figure, mesh, 1))
+    let mut pipeline = parallel::Parallel::new(figure, model, settings.threads)
+        .or_else(|_| parallel::Parallel::new(figure, model, 1))
         .expect("one band needs no thread");
-    draw_frame(&mut pipeline, figure, mesh, settings, &mut frame);
+    draw_frame(&mut pipeline, figure, model, settings, &mut frame);
     let stats = pipeline.stats();
     let timing = runs.map(|n| {
         time_runs(n, || {
-            draw_frame(&mut pipeline, figure, mesh, settings, &mut frame)
+            draw_frame(&mut pipeline, figure, model, settings, &mut frame)
         })
     });
     (frame, timing, stats)
@@ -171,13 +166,16 @@ fn render_into(
 pub fn draw_frame(
     pipeline: &mut parallel::Parallel,
     figure: Figure,
-    mesh: &Mesh,
+    model: Model,
     settings: &Settings,
     frame: &mut Frame,
 ) {
-    let shadow = figure.shadow_map(mesh, &settings.light(), settings.near);
-    let uniforms = settings.uniforms_for(mesh).with_shadow(shadow.as_ref());
-    pipeline.render(mesh, &settings.camera(), &uniforms, frame);
+    let shadow = figure.shadow_map(model.mesh, &settings.light(), settings.near);
+    let inputs = Inputs {
+        shadow: shadow.as_ref(),
+        ..settings.inputs(model)
+    };
+    pipeline.render(&inputs, model.mesh, &settings.camera(), frame);
     if let Some(dof) = settings.dof {
         dof.apply(frame, settings.focal);
     }
@@ -201,16 +199,17 @@ pub fn stats_text(s: &Stats) -> String {
 
 /// Draws `figure` of `mesh` and writes it to `out`: its colours, or with
 /// `buffer` its depth buffer as [`depth_buffer_picture`] shows it.
-pub fn render_to_file(
+pub fn render_to_file<'a>(
     figure: Figure,
-    mesh: &Mesh,
+    model: impl Into<Model<'a>>,
     settings: &Settings,
     out: &Path,
     runs: Option<usize>,
     buffer: bool,
 ) -> Result<(Option<Timing>, Stats), WriteError> {
+    let model = model.into();
     let frame = frame_for(settings, out)?;
-    let (frame, timing, stats) = render_into(figure, mesh, settings, runs, frame);
+    let (frame, timing, stats) = render_into(figure, model, settings, runs, frame);
     match buffer {
         true => write_image(&depth_buffer_picture(&frame), out)?,
         false => write_image(&frame, out)?,
@@ -267,19 +266,21 @@ pub fn export_obj(mesh: &Mesh, path: &Path) -> Result<(), WriteError> {
 /// meshes), so the order of drawing can be seen, Figure 4's mistake included.
 /// Each frame is allocated before it is drawn, so too large a size is refused
 /// with what the frames need.
-pub fn build_up(
+pub fn build_up<'a>(
     figure: Figure,
-    mesh: &Mesh,
+    model: impl Into<Model<'a>>,
     settings: &Settings,
     max_frames: usize,
 ) -> Result<Vec<Frame>, String> {
+    let model = model.into();
+    let mesh = model.mesh;
     let faces = mesh.faces.len();
     let per_frame = faces.div_ceil(max_frames.max(1)).max(1);
     let mut frames = Vec::new();
-    let mut pipeline = parallel::Parallel::new(figure, mesh, settings.threads)
-        .or_else(|_| parallel::Parallel::new(figure, mesh, 1))
+    let mut pipeline = parallel::Parallel::new(figure, model, settings.threads)
+        .or_else(|_| parallel::Parallel::new(figure, model, 1))
         .expect("one band needs no thread");
-    let (camera, uniforms) = (settings.camera(), settings.uniforms_for(mesh));
+    let camera = settings.camera();
     // One copy of the mesh whose faces grow: no copy of the vertices per frame.
     let mut prefix = Mesh {
         faces: Vec::with_capacity(faces),
@@ -298,7 +299,7 @@ pub fn build_up(
             let all = crate::pipeline::target::megabytes(each * count);
             format!("{why}; the animation's {count} frames need {all}")
         })?;
-        pipeline.render(&prefix, &camera, &uniforms, &mut frame);
+        pipeline.render(&settings.inputs(model), &prefix, &camera, &mut frame);
         frames.push(frame);
     }
     Ok(frames)
@@ -306,14 +307,15 @@ pub fn build_up(
 
 /// `rasterlab animate`: [`build_up`] of `mesh` written as a GIF that
 /// shows each triangle for `delay_ms` and the finished image for two seconds.
-pub fn animate_to_file(
+pub fn animate_to_file<'a>(
     figure: Figure,
-    mesh: &Mesh,
+    model: impl Into<Model<'a>>,
     settings: &Settings,
     out: &Path,
     delay_ms: u32,
 ) -> Result<usize, WriteError> {
-    let frames = build_up(figure, mesh, settings, 60).map_err(|why| WriteError::new(out, why))?;
+    let model = model.into();
+    let frames = build_up(figure, model, settings, 60).map_err(|why| WriteError::new(out, why))?;
     let fail = |e: image::ImageError| WriteError::new(out, e.to_string());
     let mut bytes = Vec::new();
     {
@@ -402,7 +404,7 @@ pub const OVERVIEW_FILE: &str = "fig1-overview.png";
 /// Writes every figure, and the overview, into `dir` (created if missing).
 /// Returns the paths written, in order.
 pub fn render_all(
-    mesh: &Mesh,
+    model: Model,
     settings: &Settings,
     dir: &Path,
 ) -> Result<Vec<PathBuf>, WriteError> {
@@ -411,7 +413,7 @@ pub fn render_all(
     let mut frames = Vec::new();
     for figure in Figure::FIGURES {
         let frame = frame_for(settings, dir)?;
-        let (frame, _, _) = render_into(figure, mesh, settings, None, frame);
+        let (frame, _, _) = render_into(figure, model, settings, None, frame);
         let path = dir.join(figure.figure_file());
         write_image(&frame, &path)?;
         written.push(path);
@@ -456,13 +458,14 @@ pub fn rows_text(vertices: &[(i32, i32)]) -> String {
 
 /// Ray-traces `scene` (the reference) and writes it to `out`; with `runs`,
 /// times that many traces.
-pub fn raytrace_to_file(
-    scene: &Mesh,
+pub fn raytrace_to_file<'a>(
+    scene: impl Into<Model<'a>>,
     settings: &Settings,
     options: &raytrace::Options,
     out: &Path,
     runs: Option<usize>,
 ) -> Result<Option<Timing>, WriteError> {
+    let scene = scene.into();
     // Too large an image is refused here, with what it needs, not aborted on.
     // The frame (4 bytes a pixel), each pixel's hit (8) and the rows written (3).
     reserve(

@@ -3,15 +3,19 @@
 //! band draws exactly its part of the whole image, so the result is the same, byte
 //! for byte, for any number of threads.
 
-use crate::measure::figure::Figure;
+use crate::extensions::normal_map::{tangent_frames, TangentFrame};
+use crate::extensions::texture::Model;
+use crate::measure::figure::{Attributes, Figure, Inputs, Render};
 use crate::pipeline::draw::Stats;
-use crate::pipeline::{Camera, Frame, Mesh, Render, Uniforms};
+use crate::pipeline::{Camera, Frame, Mesh};
 
 /// A figure drawn in `threads` bands.
 pub struct Parallel {
-    pipelines: Vec<Box<dyn Render + Send>>,
+    pipelines: Vec<Box<dyn Render>>,
     pool: Option<rayon::ThreadPool>,
     stats: Stats,
+    /// The faces' tangent frames, for a figure with a normal map.
+    frames: Vec<TangentFrame>,
 }
 
 /// The number of cores, the default `--threads`.
@@ -21,7 +25,12 @@ pub fn cores() -> usize {
 
 impl Parallel {
     /// `figure` of `mesh` on `threads` threads (1 draws on the calling thread).
-    pub fn new(figure: Figure, mesh: &Mesh, threads: usize) -> Result<Parallel, String> {
+    pub fn new<'a>(
+        figure: Figure,
+        model: impl Into<Model<'a>>,
+        threads: usize,
+    ) -> Result<Parallel, String> {
+        let model = model.into();
         let threads = threads.max(1);
         let pool = if threads > 1 {
             let pool = rayon::ThreadPoolBuilder::new()
@@ -33,15 +42,24 @@ impl Parallel {
             None
         };
         Ok(Parallel {
-            pipelines: (0..threads).map(|_| figure.pipeline_for(mesh)).collect(),
+            pipelines: (0..threads).map(|_| figure.pipeline_for(model)).collect(),
             pool,
             stats: Stats::default(),
+            frames: match Attributes::of(model).normal_map {
+                true => tangent_frames(model.mesh),
+                false => Vec::new(),
+            },
         })
     }
 
     /// Sizes `frame` to the camera's image and draws `mesh` into it, a band per
-    /// thread.
-    pub fn render(&mut self, mesh: &Mesh, camera: &Camera, uniforms: &Uniforms, frame: &mut Frame) {
+    /// thread, each with the stage made from `inputs` (and the faces' tangent
+    /// frames, which this keeps).
+    pub fn render(&mut self, inputs: &Inputs, mesh: &Mesh, camera: &Camera, frame: &mut Frame) {
+        let inputs = &Inputs {
+            frames: &self.frames,
+            ..*inputs
+        };
         let depth = self.pipelines[0].depth_test();
         frame.resize(camera.width, camera.height, depth);
         let bands = frame.bands(self.pipelines.len());
@@ -49,12 +67,12 @@ impl Parallel {
         match &self.pool {
             None => {
                 for (pipeline, mut band) in work {
-                    pipeline.draw(mesh, camera, uniforms, &mut band);
+                    pipeline.draw(inputs, mesh, camera, &mut band);
                 }
             }
             Some(pool) => pool.scope(|s| {
                 for (pipeline, mut band) in work {
-                    s.spawn(move |_| pipeline.draw(mesh, camera, uniforms, &mut band));
+                    s.spawn(move |_| pipeline.draw(inputs, mesh, camera, &mut band));
                 }
             }),
         }

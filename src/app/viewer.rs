@@ -8,10 +8,12 @@ use super::image_io::write_image;
 use super::parallel::Parallel;
 use super::Settings;
 use crate::extensions::depth_of_field::DepthOfField;
+use crate::extensions::shadow::Shadows;
+use crate::extensions::texture::{Filter, MaterialMaps};
 use crate::measure::figure::{Figure, Raster, StageName};
-use crate::pipeline::shadow::Shadows;
-use crate::pipeline::{Filter, Frame, Mesh};
+use crate::pipeline::Frame;
 use crate::scene::texture::{apply_normal_map, apply_parallax, apply_texture, bumps, TextureSpec};
+use crate::scene::Scene;
 use std::collections::VecDeque;
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -21,7 +23,7 @@ use std::time::{Duration, Instant};
 pub struct Options {
     pub settings: Settings,
     /// What the window shows, and the `--scene` spec that named it.
-    pub mesh: crate::pipeline::Mesh,
+    pub model: Scene,
     pub scene: String,
     /// The `--texture` spec the mesh was given, if any.
     pub texture: Option<String>,
@@ -83,7 +85,7 @@ impl Summary {
                 command += " --parallax";
             }
         }
-        if self.settings.filter == crate::pipeline::Filter::Bilinear && lit {
+        if self.settings.filter == Filter::Bilinear && lit {
             command += " --filter bilinear";
         }
         command
@@ -107,25 +109,18 @@ fn autofocus(frame: &Frame) -> DepthOfField {
     }
 }
 
-/// The mesh the viewer draws: `given` with its textures and its normal map each
+/// The scene the viewer draws: `given` with its textures and its normal map each
 /// toggled when asked (`t`, `n`): taken off if it had them, else the checker or
-/// the bumps put on (on the room for the box, which `spec` names).
-fn toggled_mesh(
-    given: &Mesh,
-    spec: &str,
+/// the bumps put on (on the room for the box).
+fn toggled(
+    given: &Scene,
     texture: bool,
     normal_map: bool,
     parallax: bool,
-) -> Result<Mesh, String> {
-    let mut scene = crate::scene::Scene {
-        name: spec.to_string(),
-        mesh: given.clone(),
-        is_box: spec == "cornell" || spec.starts_with("cornell:"),
-        pitch: 0.0,
-        warnings: Vec::new(),
-    };
+) -> Result<Scene, String> {
+    let mut scene = given.clone();
     if texture {
-        let had = given.materials.iter().any(|m| m.texture.is_some());
+        let had = given.maps.materials.iter().any(|m| m.texture.is_some());
         let spec = if had {
             TextureSpec::None
         } else {
@@ -134,9 +129,9 @@ fn toggled_mesh(
         apply_texture(&mut scene, &spec)?;
     }
     if normal_map {
-        if given.materials.iter().any(|m| m.normal_map.is_some()) {
+        if given.maps.materials.iter().any(|m| m.normal_map.is_some()) {
             scene
-                .mesh
+                .maps
                 .materials
                 .iter_mut()
                 .for_each(|m| m.normal_map = None);
@@ -146,14 +141,14 @@ fn toggled_mesh(
     }
     // Parallax reads the bumps' heights: on when asked and the bumps are there.
     scene
-        .mesh
+        .maps
         .materials
         .iter_mut()
         .for_each(|m| m.height_map = None);
     if parallax {
         apply_parallax(&mut scene);
     }
-    Ok(scene.mesh)
+    Ok(scene)
 }
 
 /// `rasterlab <stage> [--affine] --size .. --camera ..`: every setting, written so
@@ -297,11 +292,14 @@ pub fn run(options: Options) -> Result<Summary, String> {
     window.set_target_fps(options.fps);
 
     // The mesh as given; `t` and `n` toggle its textures and normal map.
-    let given = options.mesh.clone();
-    let had_texture = given.materials.iter().any(|m| m.texture.is_some());
-    let had_normal_map = given.materials.iter().any(|m| m.normal_map.is_some());
+    let given = options.model.clone();
+    let has = |pick: fn(&MaterialMaps) -> Option<u32>| {
+        given.maps.materials.iter().any(|m| pick(m).is_some())
+    };
+    let had_texture = has(|m| m.texture);
+    let had_normal_map = has(|m| m.normal_map);
     let (mut textured, mut bumped) = (had_texture, had_normal_map);
-    let mut parallax = given.materials.iter().any(|m| m.height_map.is_some());
+    let mut parallax = has(|m| m.height_map);
     // `g` switches between none and this: --dof's, or set at the first `g`.
     let mut dof = options.settings.dof;
     // Kept apart from the view, which drops them on stages without light.
@@ -379,9 +377,8 @@ pub fn run(options: Options) -> Result<Summary, String> {
                         }
                     }
                     parallax &= bumped;
-                    scene = toggled_mesh(
+                    scene = toggled(
                         &given,
-                        &options.scene,
                         textured != had_texture,
                         bumped != had_normal_map,
                         parallax,
@@ -431,7 +428,7 @@ pub fn run(options: Options) -> Result<Summary, String> {
         }
 
         let draw_start = Instant::now();
-        super::draw_frame(&mut pipeline, view, &scene, &settings, &mut frame);
+        super::draw_frame(&mut pipeline, view, scene.model(), &settings, &mut frame);
         let draw = draw_start.elapsed();
         all_draws.push(draw);
         window

@@ -1,17 +1,22 @@
 //! The stages by name, and the handout's figures as (stage, interpolation) pairs:
-//! the one place that turns a choice made at run time into a pipeline type.
+//! the one place that turns a choice made at run time into a pipeline type, and
+//! the one that knows which stages beyond the handout a mesh's maps call for.
 
-use crate::pipeline::draw::Cull;
+use crate::extensions::normal_map::{NormalMappedPixelLight, TangentFrame};
+use crate::extensions::shadow::{ShadowMap, Shadowed, Shadows, SHADOW_MAP_SIZE};
+use crate::extensions::smooth::SmoothPixelLight;
+use crate::extensions::texture::{Filter, Maps, Model, NO_MAPS};
+use crate::extensions::textured::{
+    SmoothTexturedPixelLight, TexturedPixelLight, TexturedVertexLight,
+};
+use crate::pipeline::draw::{Cull, Stats};
 use crate::pipeline::raster::{EdgeRaster, Lines, Rasterizer, RowRaster};
-use crate::pipeline::shadow::{ShadowMap, Shadows, SHADOW_MAP_SIZE};
-use crate::pipeline::stage::{
-    NormalMappedPixelLight, SmoothPixelLight, SmoothTexturedPixelLight, TexturedPixelLight,
-    TexturedVertexLight,
-};
 use crate::pipeline::{
-    Affine, Camera, Depth, Filled, Frame, Interpolation, Light, Mesh, Perspective, Pipeline,
-    PixelLight, Points, Render, Stage, Uniforms, VertexLight, Wireframe,
+    Affine, Camera, Depth, Filled, Frame, Interpolation, Light, Lighting, Mesh, Perspective,
+    Pipeline, PixelLight, Points, Stage, Target, Varying, VertexLight, Wireframe,
 };
+use glam::Vec3;
+use std::marker::PhantomData;
 
 /// The stages, as the command line and the viewer name them, in the handout's order.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -91,11 +96,139 @@ pub struct Figure {
     pub shadows: Shadows,
 }
 
+/// Everything the stages of one frame read, beyond the mesh: the light, and for
+/// the stages beyond the handout the mesh's maps, how they are read, the shadow
+/// map, the eye and the faces' tangent frames.
+#[derive(Clone, Copy, Debug)]
+pub struct Inputs<'a> {
+    pub light: Light,
+    pub maps: &'a Maps,
+    pub filter: Filter,
+    pub shadow: Option<&'a ShadowMap>,
+    /// The camera's position, for parallax.
+    pub eye: Vec3,
+    /// The faces' tangent frames, for normal maps.
+    pub frames: &'a [TangentFrame],
+}
+
+impl Inputs<'static> {
+    /// Just the light: the handout's stages need nothing more.
+    pub fn lit(light: Light) -> Self {
+        Inputs {
+            light,
+            maps: &NO_MAPS,
+            filter: Filter::Nearest,
+            shadow: None,
+            eye: Vec3::ZERO,
+            frames: &[],
+        }
+    }
+}
+
+/// A stage type chosen at run time, made for each frame from that frame's
+/// [`Inputs`] (a stage owns what it reads, so it lives no longer than they do).
+pub trait MakeStage: 'static {
+    type Varying: Varying;
+    type Stage<'a>: Stage<Varying = Self::Varying>;
+    fn make<'a>(inputs: &Inputs<'a>) -> Self::Stage<'a>;
+}
+
+/// What lights a lit stage, chosen at run time: the handout's [`Light`], or
+/// [`WithShadows`].
+pub trait MakeLight: 'static {
+    type Lighting<'a>: Lighting;
+    fn make<'a>(inputs: &Inputs<'a>) -> Self::Lighting<'a>;
+}
+
+impl MakeLight for Light {
+    type Lighting<'a> = Light;
+    fn make(inputs: &Inputs) -> Light {
+        inputs.light
+    }
+}
+
+/// The light through the frame's shadow map ([`Shadowed`]).
+pub struct WithShadows;
+
+impl MakeLight for WithShadows {
+    type Lighting<'a> = Shadowed<'a>;
+    fn make<'a>(inputs: &Inputs<'a>) -> Shadowed<'a> {
+        Shadowed {
+            light: inputs.light,
+            map: inputs.shadow,
+        }
+    }
+}
+
+macro_rules! make_plain {
+    ($($stage:ident),*) => {$(
+        impl MakeStage for $stage {
+            type Varying = <$stage as Stage>::Varying;
+            type Stage<'a> = $stage;
+            fn make(_: &Inputs) -> $stage {
+                $stage
+            }
+        }
+    )*};
+}
+
+make_plain!(Points, Wireframe, Filled, Depth);
+
+macro_rules! make_lit {
+    ($($stage:ident),*) => {$(
+        impl<L: MakeLight> MakeStage for $stage<L> {
+            type Varying = <$stage as Stage>::Varying;
+            type Stage<'a> = $stage<L::Lighting<'a>>;
+            fn make<'a>(inputs: &Inputs<'a>) -> Self::Stage<'a> {
+                $stage { light: L::make(inputs) }
+            }
+        }
+    )*};
+}
+
+make_lit!(VertexLight, PixelLight, SmoothPixelLight);
+
+macro_rules! make_textured {
+    ($($stage:ident),*) => {$(
+        impl<L: MakeLight> MakeStage for $stage<'static, L> {
+            type Varying = <$stage<'static> as Stage>::Varying;
+            type Stage<'a> = $stage<'a, L::Lighting<'a>>;
+            fn make<'a>(inputs: &Inputs<'a>) -> Self::Stage<'a> {
+                $stage {
+                    light: L::make(inputs),
+                    maps: inputs.maps,
+                    filter: inputs.filter,
+                }
+            }
+        }
+    )*};
+}
+
+make_textured!(
+    TexturedVertexLight,
+    TexturedPixelLight,
+    SmoothTexturedPixelLight
+);
+
+impl<L: MakeLight> MakeStage for NormalMappedPixelLight<'static, L> {
+    type Varying = <NormalMappedPixelLight<'static> as Stage>::Varying;
+    type Stage<'a> = NormalMappedPixelLight<'a, L::Lighting<'a>>;
+    fn make<'a>(inputs: &Inputs<'a>) -> Self::Stage<'a> {
+        NormalMappedPixelLight {
+            light: L::make(inputs),
+            maps: inputs.maps,
+            filter: inputs.filter,
+            frames: inputs.frames,
+            eye: inputs.eye,
+        }
+    }
+}
+
 /// Something to do with a pipeline once its stage, interpolation and rasterizer
 /// types are known.
 pub trait WithStage {
     type Output;
-    fn with<S: Stage, I: Interpolation, R: Rasterizer>(self) -> Self::Output;
+    fn with<M: MakeStage, I: Interpolation, R: Rasterizer>(self) -> Self::Output;
 }
 
 /// What a mesh has that a stage may carry to its pixels.
@@ -103,28 +236,28 @@ pub trait WithStage {
 pub struct Attributes {
     /// Vertex normals, for smooth light per pixel.
     pub normals: bool,
-    /// Texture coordinates and a material with a texture, for the lit stages to
+    /// (u, v) coordinates and a material with a texture, for the lit stages to
     /// read ρ from.
     pub texture: bool,
-    /// Texture coordinates and a material with a normal map, for light per pixel.
+    /// (u, v) coordinates and a material with a normal map, for light per pixel.
     pub normal_map: bool,
 }
 
 impl Attributes {
-    pub fn of(mesh: &Mesh) -> Attributes {
+    pub fn of(model: Model) -> Attributes {
         Attributes {
-            normals: !mesh.normals.is_empty(),
-            texture: !mesh.uvs.is_empty() && mesh.materials.iter().any(|m| m.texture.is_some()),
-            normal_map: !mesh.uvs.is_empty()
-                && mesh.materials.iter().any(|m| m.normal_map.is_some()),
+            normals: !model.mesh.normals.is_empty(),
+            texture: model.maps.any(model.mesh, |m| m.texture),
+            normal_map: model.maps.any(model.mesh, |m| m.normal_map),
         }
     }
 }
 
 /// The stage type for `stage` and a mesh with `attributes`, chosen here once,
 /// never per pixel: light per pixel on a mesh with vertex normals is
-/// [`SmoothPixelLight`]; a textured mesh's lit stages interpolate texture
-/// coordinates, and only then; `shadows` picks the lit stages' `SHADOWS`.
+/// [`SmoothPixelLight`]; a textured mesh's lit stages interpolate (u, v)
+/// coordinates, and only then; `shadows` lights the lit stages through the
+/// shadow map.
 fn with_types<I: Interpolation, R: Rasterizer, W: WithStage>(
     stage: StageName,
     attributes: Attributes,
@@ -136,13 +269,13 @@ fn with_types<I: Interpolation, R: Rasterizer, W: WithStage>(
         StageName::Wireframe => w.with::<Wireframe, I, R>(),
         StageName::Filled => w.with::<Filled, I, R>(),
         StageName::Depth => w.with::<Depth, I, R>(),
-        _ if shadows => with_lit_types::<I, R, W, true>(stage, attributes, w),
-        _ => with_lit_types::<I, R, W, false>(stage, attributes, w),
+        _ if shadows => with_lit_types::<I, R, W, WithShadows>(stage, attributes, w),
+        _ => with_lit_types::<I, R, W, Light>(stage, attributes, w),
     }
 }
 
-/// [`with_types`] for vertex-light and pixel-light, with or without shadows.
-fn with_lit_types<I: Interpolation, R: Rasterizer, W: WithStage, const SHADOWS: bool>(
+/// [`with_types`] for vertex-light and pixel-light, lit by `L`.
+fn with_lit_types<I: Interpolation, R: Rasterizer, W: WithStage, L: MakeLight>(
     stage: StageName,
     attributes: Attributes,
     w: W,
@@ -153,30 +286,74 @@ fn with_lit_types<I: Interpolation, R: Rasterizer, W: WithStage, const SHADOWS: 
         normal_map,
     } = attributes;
     match stage {
-        StageName::VertexLight if texture => w.with::<TexturedVertexLight<SHADOWS>, I, R>(),
-        StageName::VertexLight => w.with::<VertexLight<SHADOWS>, I, R>(),
-        StageName::PixelLight if normal_map => w.with::<NormalMappedPixelLight<SHADOWS>, I, R>(),
+        StageName::VertexLight if texture => w.with::<TexturedVertexLight<L>, I, R>(),
+        StageName::VertexLight => w.with::<VertexLight<L>, I, R>(),
+        StageName::PixelLight if normal_map => w.with::<NormalMappedPixelLight<L>, I, R>(),
         StageName::PixelLight if normals && texture => {
-            w.with::<SmoothTexturedPixelLight<SHADOWS>, I, R>()
+            w.with::<SmoothTexturedPixelLight<L>, I, R>()
         }
-        StageName::PixelLight if normals => w.with::<SmoothPixelLight<SHADOWS>, I, R>(),
-        StageName::PixelLight if texture => w.with::<TexturedPixelLight<SHADOWS>, I, R>(),
-        _ => w.with::<PixelLight<SHADOWS>, I, R>(),
+        StageName::PixelLight if normals => w.with::<SmoothPixelLight<L>, I, R>(),
+        StageName::PixelLight if texture => w.with::<TexturedPixelLight<L>, I, R>(),
+        _ => w.with::<PixelLight<L>, I, R>(),
+    }
+}
+
+/// A pipeline whose stage was chosen at run time, behind one interface.
+pub trait Render: Send {
+    /// [`Pipeline::draw`] with the stage made from `inputs`: draws `mesh` into
+    /// `target`, a band of the camera's image.
+    fn draw(&mut self, inputs: &Inputs, mesh: &Mesh, camera: &Camera, target: &mut Target);
+
+    /// What the last frame did.
+    fn stats(&self) -> Stats;
+
+    /// Whether the stage tests depth, so its target needs a depth buffer.
+    fn depth_test(&self) -> bool;
+
+    /// Sizes `frame` to the camera's image and draws `mesh` into all of it.
+    fn render(&mut self, inputs: &Inputs, mesh: &Mesh, camera: &Camera, frame: &mut Frame) {
+        frame.resize(camera.width, camera.height, self.depth_test());
+        self.draw(inputs, mesh, camera, &mut frame.target());
+    }
+}
+
+/// The pipeline of stage `M`, interpolated by `I` and rasterized by `R`.
+struct Drawn<M: MakeStage, I: Interpolation, R: Rasterizer> {
+    pipeline: Pipeline<M::Varying, I, R>,
+    stage: PhantomData<fn() -> M>,
+}
+
+impl<M: MakeStage, I: Interpolation, R: Rasterizer> Render for Drawn<M, I, R> {
+    fn draw(&mut self, inputs: &Inputs, mesh: &Mesh, camera: &Camera, target: &mut Target) {
+        self.pipeline.draw(&M::make(inputs), mesh, camera, target)
+    }
+
+    fn stats(&self) -> Stats {
+        *self.pipeline.stats()
+    }
+
+    fn depth_test(&self) -> bool {
+        <M::Stage<'static> as Stage>::DEPTH_TEST
     }
 }
 
 struct NewPipeline {
     cull: Cull,
     lines: Lines,
+    batch_shading: bool,
 }
 
 impl WithStage for NewPipeline {
-    type Output = Box<dyn Render + Send>;
-    fn with<S: Stage, I: Interpolation, R: Rasterizer>(self) -> Box<dyn Render + Send> {
-        let mut pipeline = Pipeline::<S, I, R>::new();
+    type Output = Box<dyn Render>;
+    fn with<M: MakeStage, I: Interpolation, R: Rasterizer>(self) -> Box<dyn Render> {
+        let mut pipeline = Pipeline::<M::Varying, I, R>::new();
         pipeline.cull = self.cull;
         pipeline.lines = self.lines;
-        Box::new(pipeline)
+        pipeline.batch_shading = self.batch_shading;
+        Box::new(Drawn::<M, I, R> {
+            pipeline,
+            stage: PhantomData,
+        })
     }
 }
 
@@ -237,25 +414,16 @@ impl Figure {
 
     /// The light's shadow map when this figure draws shadows; none otherwise, so
     /// a frame without shadows draws no map. `near` is the camera's near plane.
-    /// The map is drawn by the depth stage with the exact rasterizer, which
-    /// samples the texel centres the lookups assume.
     pub fn shadow_map(self, mesh: &Mesh, light: &Light, near: f32) -> Option<ShadowMap> {
         if self.shadows == Shadows::None {
             return None;
         }
-        let mut pipeline = Pipeline::<Depth, Perspective, EdgeRaster>::new();
-        let uniforms = Uniforms::lit(*light);
-        let draw_depth = |camera: &Camera| {
-            let mut frame = Frame::default();
-            pipeline.render(mesh, camera, &uniforms, &mut frame);
-            frame
-        };
         Some(ShadowMap::render(
             light.position,
             SHADOW_MAP_SIZE,
             near,
             self.shadows,
-            draw_depth,
+            mesh,
         ))
     }
 
@@ -353,24 +521,31 @@ impl Figure {
         }
     }
 
-    /// The pipeline that draws this figure of `mesh`: the stage types fit the
-    /// mesh's attributes (smooth light where it has vertex normals, texture
+    /// The pipeline that draws this figure of `model`: the stage types fit the
+    /// mesh's attributes (smooth light where it has vertex normals, (u, v)
     /// coordinates where it has a texture).
-    pub fn pipeline_for(self, mesh: &Mesh) -> Box<dyn Render + Send> {
+    pub fn pipeline_for<'a>(self, model: impl Into<Model<'a>>) -> Box<dyn Render> {
+        let attributes = Attributes::of(model.into());
+        // Light per pixel vectorises when shaded a triangle at a time; a texture
+        // lookup does not, and light per vertex is too light to gain.
+        let batch_shading =
+            self.stage == StageName::PixelLight && !attributes.texture && !attributes.normal_map;
         self.with_stage(
-            Attributes::of(mesh),
+            attributes,
             NewPipeline {
                 cull: self.cull,
                 lines: self.lines,
+                batch_shading,
             },
         )
     }
 
-    /// Draws this figure of `mesh` into a new frame.
-    pub fn render(self, mesh: &Mesh, camera: &Camera, uniforms: &Uniforms) -> Frame {
+    /// Draws this figure of `mesh`, lit by `light`, into a new frame: the
+    /// handout's stages on a mesh's colours.
+    pub fn render(self, mesh: &Mesh, camera: &Camera, light: Light) -> Frame {
         let mut frame = Frame::default();
         self.pipeline_for(mesh)
-            .render(mesh, camera, uniforms, &mut frame);
+            .render(&Inputs::lit(light), mesh, camera, &mut frame);
         frame
     }
 }

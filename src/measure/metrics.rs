@@ -226,9 +226,8 @@ mod tests {
             glam::Vec3::ONE,
         );
         let mesh = Mesh::from_triangles(&[tri]);
-        let uniforms = crate::pipeline::Uniforms::lit(crate::pipeline::Light::handout());
         let frame = crate::measure::figure::Figure::of(crate::measure::figure::StageName::Points)
-            .render(&mesh, &camera, &uniforms);
+            .render(&mesh, &camera, crate::pipeline::Light::handout());
         assert_eq!(frame.color.iter().filter(|&&c| c != 0).count(), 3);
         assert_eq!(points_within_one_pixel(&mesh, &camera, &frame), (2, 3));
     }

@@ -3,10 +3,11 @@
 //! rasterizer ([`Light::reflected`]). Everything the rasterizer's stages are
 //! measured against (`rasterlab report`) comes from here.
 
+use crate::extensions::normal_map::tangent_frame;
+use crate::extensions::texture::{Filter, Model, Texture};
 use crate::measure::bvh::Bvh;
-use crate::pipeline::mesh::tangent_frame;
 use crate::pipeline::target::pack;
-use crate::pipeline::{Camera, Filter, Frame, Light, Mesh, Texture};
+use crate::pipeline::{Camera, Frame, Light};
 use glam::{Vec2, Vec3};
 
 /// What the reference shows at a hit.
@@ -75,7 +76,8 @@ struct Mapping {
 }
 
 impl Scene {
-    pub fn new(mesh: &Mesh) -> Scene {
+    pub fn new<'a>(model: impl Into<Model<'a>>) -> Scene {
+        let Model { mesh, maps } = model.into();
         let normals = if mesh.normals.is_empty() {
             Vec::new()
         } else {
@@ -84,16 +86,17 @@ impl Scene {
                 .map(|f| f.vertices.map(|i| mesh.normals[i as usize]))
                 .collect()
         };
-        let mapped = if mesh.uvs.is_empty() || mesh.textures.is_empty() {
+        let mapped = if mesh.uvs.is_empty() || maps.images.is_empty() {
             Vec::new()
         } else {
             mesh.faces
                 .iter()
                 .map(|f| {
-                    let m = mesh.material(f);
+                    let m = maps.of(f.material);
                     let uv = f.vertices.map(|i| mesh.uvs[i as usize]);
                     let p = f.vertices.map(|i| mesh.positions[i as usize]);
-                    let (tangent, bitangent) = tangent_frame(p, uv, f.normal);
+                    let frame = tangent_frame(p, uv, f.normal);
+                    let (tangent, bitangent) = (frame.tangent, frame.bitangent);
                     (m.texture.is_some() || m.normal_map.is_some()).then_some(Mapping {
                         texture: m.texture,
                         normal_map: m.normal_map,
@@ -108,7 +111,7 @@ impl Scene {
             bvh: Bvh::new(mesh.triangles().collect()),
             normals,
             mapped,
-            textures: mesh.textures.clone(),
+            textures: maps.images.clone(),
         }
     }
 
@@ -190,8 +193,13 @@ pub fn trace(
 /// Traces the scene as `camera` sees it: the ray for screen point (sx, sy) goes
 /// through camera-space (sx - W/2, sy - H/2, f), the inverse of the rasterizer's
 /// projection, and pixel (x, y) is sampled at (x + 0.5, y + 0.5).
-pub fn raytrace(mesh: &Mesh, camera: &Camera, light: &Light, options: &Options) -> Traced {
-    let scene = &Scene::new(mesh);
+pub fn raytrace<'a>(
+    model: impl Into<Model<'a>>,
+    camera: &Camera,
+    light: &Light,
+    options: &Options,
+) -> Traced {
+    let scene = &Scene::new(model);
     let (w, h) = (camera.width, camera.height);
     let [right, down, forward] = camera.axes();
     let (half_w, half_h) = ((w / 2) as f32, (h / 2) as f32);

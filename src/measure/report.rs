@@ -3,6 +3,9 @@
 //! an error-against-time plot.
 
 use crate::extensions::depth_of_field::DepthOfField;
+use crate::extensions::normal_map::tangent_frames;
+use crate::extensions::shadow::Shadows;
+use crate::measure::figure::Inputs;
 use crate::measure::figure::{Figure, StageName};
 use crate::measure::heat::heat_map_picture;
 use crate::measure::metrics::{
@@ -12,8 +15,7 @@ use crate::measure::metrics::{
 use crate::measure::plot::{Canvas, LogLog, BLACK, DARK};
 use crate::measure::raytrace::{raytrace, Options, Shading, Traced};
 use crate::measure::timing::{time_runs, Timing};
-use crate::pipeline::shadow::Shadows;
-use crate::pipeline::{Camera, Frame, Light, Mesh, Uniforms};
+use crate::pipeline::{Camera, Frame, Light, Mesh};
 use crate::scene::{framed_pose, subdivide, Pose, Scene};
 use std::fmt::Write as _;
 
@@ -238,7 +240,7 @@ pub fn measure_all(
 ) -> Vec<Row> {
     let base = &scene.mesh;
     let pose = *pose;
-    let uniforms = Uniforms::lit(light_for(&pose));
+    let inputs = Inputs::lit(light_for(&pose));
     let plan_ks: &[u32] = if scene.is_box { &plan.ks } else { &[1] };
     let mut rows = Vec::new();
     let mut sizes = plan.sizes.clone();
@@ -302,9 +304,9 @@ pub fn measure_all(
             for &view in &figures {
                 let mut pipeline = view.pipeline_for(scene);
                 let mut frame = Frame::default();
-                pipeline.render(scene, &camera, &uniforms, &mut frame); // warm-up
+                pipeline.render(&inputs, scene, &camera, &mut frame); // warm-up
                 let timing = time_runs(plan.runs, || {
-                    pipeline.render(scene, &camera, &uniforms, &mut frame)
+                    pipeline.render(&inputs, scene, &camera, &mut frame)
                 });
                 let metric = measure(view, base, scene, &camera, &frame, &r, k);
                 let row = Row {
@@ -486,21 +488,20 @@ pub fn heat_maps(plan: &Plan, scene: &Scene, pose: &Pose) -> Vec<(String, Frame)
     let size = conclusion_size(plan);
     let pose = *pose;
     let (mesh, camera, light) = (&scene.mesh, camera_for(size, &pose), light_for(&pose));
-    let uniforms = Uniforms::lit(light);
     let reference = raytrace(mesh, &camera, &light, &Options::default()).frame;
     let mut out = Vec::new();
     let lit = measured_figures()
         .into_iter()
         .filter(|f| f.stage.interpolates());
     for figure in lit {
-        let frame = figure.render(mesh, &camera, &uniforms);
+        let frame = figure.render(mesh, &camera, light);
         let title = format!("{} against the ray tracer, {size}x{size}", figure.label());
         let name = format!("heat-{}", figure.default_file());
         out.extend(heat_map_picture(&frame, &reference, &title).map(|p| (name, p)));
     }
-    let seven = Figure::of(StageName::PixelLight).render(mesh, &camera, &uniforms);
-    let eight = Figure::with_interpolation(StageName::PixelLight, Some(true))
-        .render(mesh, &camera, &uniforms);
+    let seven = Figure::of(StageName::PixelLight).render(mesh, &camera, light);
+    let eight =
+        Figure::with_interpolation(StageName::PixelLight, Some(true)).render(mesh, &camera, light);
     let title = "Figure 7 against Figure 8: what perspective correction changes";
     out.extend(
         heat_map_picture(&seven, &eight, title).map(|p| ("heat-fig7-vs-fig8.png".into(), p)),
@@ -797,7 +798,7 @@ pub fn plot(rows: &[Row], plan: &Plan) -> Frame {
 /// One option beyond the handout, as the report measures it.
 struct OptionCase {
     label: &'static str,
-    mesh: Mesh,
+    scene: Scene,
     figure: Figure,
     dof: Option<DepthOfField>,
     /// The ray tracer's counterpart: the same mesh with shadow rays or not;
@@ -821,7 +822,7 @@ pub fn measure_options(
     let with = |f: &dyn Fn(&mut Scene)| {
         let mut s = scene.clone();
         f(&mut s);
-        s.mesh
+        s
     };
     let textured = with(&|s| {
         let _ = apply_texture(s, &crate::scene::texture::TextureSpec::Checker);
@@ -838,42 +839,42 @@ pub fn measure_options(
     let cases = [
         OptionCase {
             label: "pixel-light --texture checker",
-            mesh: textured,
+            scene: textured,
             figure: pixel_light,
             dof: None,
             reference: Some(false),
         },
         OptionCase {
             label: "pixel-light --normal-map bumps",
-            mesh: bumped,
+            scene: bumped,
             figure: pixel_light,
             dof: None,
             reference: Some(false),
         },
         OptionCase {
             label: "pixel-light --texture checker --normal-map bumps --parallax",
-            mesh: parallax,
+            scene: parallax,
             figure: pixel_light,
             dof: None,
             reference: None,
         },
         OptionCase {
             label: "pixel-light --shadows",
-            mesh: scene.mesh.clone(),
+            scene: scene.clone(),
             figure: pixel_light.with_shadows(Shadows::Hard),
             dof: None,
             reference: Some(true),
         },
         OptionCase {
             label: "pixel-light --shadows --pcf",
-            mesh: scene.mesh.clone(),
+            scene: scene.clone(),
             figure: pixel_light.with_shadows(Shadows::Pcf),
             dof: None,
             reference: Some(true),
         },
         OptionCase {
             label: "pixel-light --dof (focus on the scene's centre)",
-            mesh: scene.mesh.clone(),
+            scene: scene.clone(),
             figure: pixel_light,
             dof: Some(DepthOfField {
                 focus,
@@ -891,17 +892,20 @@ pub fn measure_options(
     let near = camera.near.unwrap_or(crate::pipeline::camera::DEFAULT_NEAR);
     let mut rows = Vec::new();
     for case in cases {
-        let mesh = &case.mesh;
-        let mut pipeline = case.figure.pipeline_for(mesh);
+        let mesh = &case.scene.mesh;
+        let mut pipeline = case.figure.pipeline_for(&case.scene);
         let mut frame = Frame::default();
+        let frames = tangent_frames(mesh);
         let mut draw = |frame: &mut Frame| {
             let shadow = case.figure.shadow_map(mesh, &light, near);
-            let uniforms = Uniforms {
-                textures: &mesh.textures,
+            let inputs = Inputs {
+                maps: &case.scene.maps,
                 eye: camera.position,
-                ..Uniforms::lit(light)
+                shadow: shadow.as_ref(),
+                frames: &frames,
+                ..Inputs::lit(light)
             };
-            pipeline.render(mesh, &camera, &uniforms.with_shadow(shadow.as_ref()), frame);
+            pipeline.render(&inputs, mesh, &camera, frame);
             if let Some(dof) = case.dof {
                 dof.apply(frame, camera.focal);
             }
@@ -914,7 +918,7 @@ pub fn measure_options(
                     shadows,
                     ..Options::default()
                 };
-                let reference = raytrace(mesh, &camera, &light, &options).frame;
+                let reference = raytrace(&case.scene, &camera, &light, &options).frame;
                 Metric::Light {
                     all: image_error(&frame, &reference, None),
                     interior: image_error(&frame, &reference, Some(&mask)),

@@ -4,7 +4,7 @@
 //! each drawn by the core with every pixel checked for NaN and infinity, compared
 //! with the ray tracer where that means something, and timed.
 
-use crate::measure::figure::{Attributes, Figure, StageName, WithStage};
+use crate::measure::figure::{Attributes, Figure, Inputs, MakeStage, StageName, WithStage};
 use crate::measure::metrics::{differing_fraction, image_error, interior_mask};
 use crate::measure::raytrace::{self, raytrace, Shading};
 use crate::measure::report::INTERIOR_MARGIN;
@@ -13,42 +13,33 @@ use crate::pipeline::interpolate::{Pixel, Steps};
 use crate::pipeline::mesh::Vertex;
 use crate::pipeline::raster::Rasterizer;
 use crate::pipeline::stage::{Primitive, Surface};
-use crate::pipeline::{
-    Camera, Frame, Interpolation, Light, Mesh, Pipeline, Render, Stage, Triangle, Uniforms,
-};
+use crate::pipeline::{Camera, Frame, Interpolation, Light, Mesh, Pipeline, Stage, Triangle};
 use crate::scene::cornell_box;
 use glam::Vec3;
-use std::cell::Cell;
 use std::fmt::Write as _;
-use std::marker::PhantomData;
 use std::panic::{catch_unwind, AssertUnwindSafe};
-
-thread_local! {
-    static NON_FINITE: Cell<u64> = const { Cell::new(0) };
-}
-
-fn check(ok: bool) {
-    if !ok {
-        NON_FINITE.with(|n| n.set(n.get() + 1));
-    }
-}
+use std::sync::atomic::{AtomicU64, Ordering};
 
 /// A stage that counts every non-finite colour its pixel shader produces.
-struct Checked<S>(PhantomData<S>);
+struct Checked<S> {
+    stage: S,
+    non_finite: AtomicU64,
+}
 
 impl<S: Stage> Stage for Checked<S> {
     type Varying = S::Varying;
     const PRIMITIVE: Primitive = S::PRIMITIVE;
     const DEPTH_TEST: bool = S::DEPTH_TEST;
-    const BATCH_SHADING: bool = S::BATCH_SHADING;
 
-    fn vertex_shader(vertex: &Vertex, surface: &Surface, uniforms: &Uniforms) -> S::Varying {
-        S::vertex_shader(vertex, surface, uniforms)
+    fn vertex_shader(&self, vertex: &Vertex, surface: &Surface) -> S::Varying {
+        self.stage.vertex_shader(vertex, surface)
     }
 
-    fn pixel_shader(varying: &S::Varying, surface: &Surface, uniforms: &Uniforms) -> Vec3 {
-        let c = S::pixel_shader(varying, surface, uniforms);
-        check(c.is_finite());
+    fn pixel_shader(&self, varying: &S::Varying, surface: &Surface) -> Vec3 {
+        let c = self.stage.pixel_shader(varying, surface);
+        if !c.is_finite() {
+            self.non_finite.fetch_add(1, Ordering::Relaxed);
+        }
         c
     }
 }
@@ -59,21 +50,25 @@ impl<S: Stage> Stage for Checked<S> {
 struct DrawChecked<'a> {
     scene: &'a Mesh,
     camera: &'a Camera,
-    uniforms: &'a Uniforms<'a>,
+    light: Light,
     runs: usize,
 }
 
 impl WithStage for DrawChecked<'_> {
     type Output = (Frame, u64, f64);
-    fn with<S: Stage, I: Interpolation, R: Rasterizer>(self) -> (Frame, u64, f64) {
-        let mut pipeline = Pipeline::<Checked<S>, I, R>::new();
+    fn with<M: MakeStage, I: Interpolation, R: Rasterizer>(self) -> (Frame, u64, f64) {
+        let inputs = Inputs::lit(self.light);
+        let checked = Checked {
+            stage: M::make(&inputs),
+            non_finite: AtomicU64::new(0),
+        };
+        let mut pipeline = Pipeline::<M::Varying, I, R>::new();
         let mut frame = Frame::default();
-        NON_FINITE.with(|n| n.set(0));
-        pipeline.render(self.scene, self.camera, self.uniforms, &mut frame);
+        pipeline.render(&checked, self.scene, self.camera, &mut frame);
         let depth = frame.depth.iter().filter(|z| !z.is_finite()).count() as u64;
-        let bad = NON_FINITE.with(|n| n.get()) + depth;
+        let bad = checked.non_finite.load(Ordering::Relaxed) + depth;
         let t = time_runs(self.runs, || {
-            pipeline.render(self.scene, self.camera, self.uniforms, &mut frame)
+            pipeline.render(&checked, self.scene, self.camera, &mut frame)
         });
         (frame, bad, t.median.as_secs_f64() * 1e3)
     }
@@ -490,10 +485,11 @@ pub fn run(case: &Case, runs: usize) -> Outcome {
         let draw = DrawChecked {
             scene: &case.scene,
             camera: &case.camera,
-            uniforms: &Uniforms::lit(case.light),
+            light: case.light,
             runs,
         };
-        case.view.with_stage(Attributes::of(&case.scene), draw)
+        case.view
+            .with_stage(Attributes::of((&case.scene).into()), draw)
     }));
     let mut outcome = Outcome {
         name: case.name.clone(),

@@ -9,9 +9,9 @@ use super::clip::{
     ScreenVertex,
 };
 use super::interpolate::{Interpolation, Perspective, Pixel, Varying};
-use super::mesh::{tangent_frame, Mesh};
+use super::mesh::Mesh;
 use super::raster::{Bounds, Lines, Rasterizer, RowRaster, Viewport};
-use super::stage::{Primitive, Stage, Surface, Uniforms};
+use super::stage::{Primitive, Stage, Surface};
 use super::target::{pack, Frame, Target};
 use glam::Vec3;
 use std::marker::PhantomData;
@@ -20,20 +20,27 @@ use std::marker::PhantomData;
 /// sizes: primitives are cut there, so none costs more than a few screens.
 pub const GUARD_BAND: f32 = 1.0;
 
-/// A stage `S`, interpolated the way `I` says and rasterized by `R`, with the
-/// scratch buffers it reuses from one triangle and one frame to the next.
-pub struct Pipeline<S: Stage, I: Interpolation = Perspective, R: Rasterizer = RowRaster> {
+/// The core for stages whose per-pixel struct is `V`, interpolated the way `I`
+/// says and rasterized by `R`, with the scratch buffers it reuses from one
+/// triangle and one frame to the next. The stage itself is handed to each draw.
+pub struct Pipeline<V: Varying, I: Interpolation = Perspective, R: Rasterizer = RowRaster> {
     /// Which faces to leave out by the way they face the camera.
     pub cull: Cull,
     /// How lines and the rows' polygon edges are walked.
     pub lines: Lines,
-    scratch: R::Scratch<S::Varying>,
+    /// Whether each triangle's visible pixels are shaded together once it is
+    /// rasterized ([`Visible`]) rather than one by one as they are found (the
+    /// default): the same pixels and colours either way. Worth it for a pixel
+    /// shader heavy enough to gain from running over plain arrays, which the
+    /// compiler vectorises (light per pixel); a cost for a light one.
+    pub batch_shading: bool,
+    scratch: R::Scratch<V>,
     /// Every vertex of the mesh in camera space, transformed once per frame
     /// however many faces share it.
     camera_space: Vec<Vec3>,
-    visible: Visible<S::Varying>,
+    visible: Visible<V>,
     stats: Stats,
-    types: PhantomData<(S, I)>,
+    interpolation: PhantomData<I>,
 }
 
 /// Faces left out by the way they face the camera: a face is back-facing when its
@@ -91,15 +98,15 @@ impl<V: Varying> Visible<V> {
     #[inline(never)]
     fn shade<S: Stage<Varying = V>, I: Interpolation>(
         &mut self,
+        stage: &S,
         surface: &Surface,
-        uniforms: &Uniforms,
         color: &mut [u32],
     ) {
         self.shaded.clear();
         self.shaded.extend(
             self.carried
                 .iter()
-                .map(|&(zinv, q)| pack(S::pixel_shader(&I::decode(zinv, q), surface, uniforms))),
+                .map(|&(zinv, q)| pack(stage.pixel_shader(&I::decode(zinv, q), surface))),
         );
         for (&i, &c) in self.index.iter().zip(&self.shaded) {
             color[i] = c;
@@ -107,11 +114,12 @@ impl<V: Varying> Visible<V> {
     }
 }
 
-impl<S: Stage, I: Interpolation, R: Rasterizer> Default for Pipeline<S, I, R> {
+impl<V: Varying, I: Interpolation, R: Rasterizer> Default for Pipeline<V, I, R> {
     fn default() -> Self {
         Pipeline {
             cull: Cull::None,
             lines: Lines::Interpolate,
+            batch_shading: false,
             scratch: Default::default(),
             camera_space: Vec::new(),
             visible: Visible {
@@ -120,12 +128,12 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Default for Pipeline<S, I, R> {
                 shaded: Vec::new(),
             },
             stats: Stats::default(),
-            types: PhantomData,
+            interpolation: PhantomData,
         }
     }
 }
 
-impl<S: Stage, I: Interpolation, R: Rasterizer> Pipeline<S, I, R> {
+impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
     pub fn new() -> Self {
         Self::default()
     }
@@ -135,13 +143,32 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Pipeline<S, I, R> {
         &self.stats
     }
 
-    /// The handout's `Draw`: clear the target, then draw every face of `mesh`.
+    /// Sizes `frame` to the camera's image and draws `mesh` into all of it.
+    pub fn render<S: Stage<Varying = V>>(
+        &mut self,
+        stage: &S,
+        mesh: &Mesh,
+        camera: &Camera,
+        frame: &mut Frame,
+    ) {
+        frame.resize(camera.width, camera.height, S::DEPTH_TEST);
+        self.draw(stage, mesh, camera, &mut frame.target());
+    }
+
+    /// The handout's `Draw`: clear the target, then draw every face of `mesh`
+    /// with `stage`'s shaders.
     ///
     /// With `camera.near` set, each primitive is clipped at the near plane before
     /// projection and at a guard band around the screen after it (see `clip`).
     /// A triangle in full view goes through neither cut, so its pixels are
     /// exactly the handout's.
-    pub fn draw(&mut self, mesh: &Mesh, camera: &Camera, uniforms: &Uniforms, target: &mut Target) {
+    pub fn draw<S: Stage<Varying = V>>(
+        &mut self,
+        stage: &S,
+        mesh: &Mesh,
+        camera: &Camera,
+        target: &mut Target,
+    ) {
         assert!(
             !S::DEPTH_TEST || target.depth.is_some(),
             "a stage with a depth test needs a depth buffer"
@@ -167,7 +194,28 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Pipeline<S, I, R> {
             screen.near = None; // nothing to cut: no test per triangle
         }
         screen.view_tests = !fit.inside;
-        for face in &mesh.faces {
+        // Chosen once per frame, so that no loop over faces or pixels tests it.
+        match self.batch_shading {
+            true => self.draw_faces::<S, true>(stage, mesh, camera, &screen, &camera_space, target),
+            false => {
+                self.draw_faces::<S, false>(stage, mesh, camera, &screen, &camera_space, target)
+            }
+        }
+        self.camera_space = camera_space;
+    }
+
+    /// Every face of `mesh`: culled, through the vertex shader, then drawn as
+    /// the stage's primitive.
+    fn draw_faces<S: Stage<Varying = V>, const BATCH: bool>(
+        &mut self,
+        stage: &S,
+        mesh: &Mesh,
+        camera: &Camera,
+        screen: &Screen,
+        camera_space: &[Vec3],
+        target: &mut Target,
+    ) {
+        for (index, face) in mesh.faces.iter().enumerate() {
             if self.cull != Cull::None {
                 let v0 = mesh.positions[face.vertices[0] as usize];
                 let facing = (camera.position - v0).dot(face.normal);
@@ -181,51 +229,40 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Pipeline<S, I, R> {
                     continue;
                 }
             }
-            let (tangent, bitangent) = if S::TANGENTS && !mesh.uvs.is_empty() {
-                let at = |k: usize| face.vertices[k] as usize;
-                tangent_frame(
-                    [0, 1, 2].map(|k| mesh.positions[at(k)]),
-                    [0, 1, 2].map(|k| mesh.uvs[at(k)]),
-                    face.normal,
-                )
-            } else {
-                (Vec3::ZERO, Vec3::ZERO)
-            };
             let surface = Surface {
                 normal: face.normal,
-                material: *mesh.material(face),
-                tangent,
-                bitangent,
+                reflectance: mesh.material(face).color,
+                face: index as u32,
+                material: face.material,
             };
             let corners = [0, 1, 2].map(|k| CameraVertex {
                 position: camera_space[face.vertices[k] as usize],
-                varying: S::vertex_shader(&mesh.vertex(face, k), &surface, uniforms),
+                varying: stage.vertex_shader(&mesh.vertex(face, k), &surface),
             });
             match S::PRIMITIVE {
                 Primitive::Points => {
                     self.stats.drawn += 1;
-                    self.draw_points(&screen, &corners, &surface, uniforms, target)
+                    self.draw_points(stage, screen, &corners, &surface, target)
                 }
                 Primitive::Lines => {
                     self.stats.drawn += 1;
-                    self.draw_edges(&screen, &corners, &surface, uniforms, target)
+                    self.draw_edges(stage, screen, &corners, &surface, target)
                 }
                 Primitive::Polygons => {
-                    self.draw_polygon(&screen, &corners, &surface, uniforms, target)
+                    self.draw_polygon::<S, BATCH>(stage, screen, &corners, &surface, target)
                 }
             }
         }
-        self.camera_space = camera_space;
     }
 
     /// The handout's `DrawPolygon`: clip, project, rasterize, then the depth test
     /// and the pixel shader.
-    fn draw_polygon(
+    fn draw_polygon<S: Stage<Varying = V>, const BATCH: bool>(
         &mut self,
+        stage: &S,
         screen: &Screen,
-        corners: &[CameraVertex<S::Varying>; 3],
+        corners: &[CameraVertex<V>; 3],
         surface: &Surface,
-        uniforms: &Uniforms,
         target: &mut Target,
     ) {
         let mut polygon = Polygon::from_slice(corners);
@@ -275,7 +312,7 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Pipeline<S, I, R> {
                     rejected += 1;
                     return;
                 }
-                if S::BATCH_SHADING {
+                if BATCH {
                     // Shaded below, the whole triangle's visible pixels at once.
                     visible.index.push(i);
                     visible.carried.push((p.zinv, p.varying));
@@ -283,28 +320,28 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Pipeline<S, I, R> {
                     written += 1;
                     if let Some(color) = color.as_deref_mut() {
                         let varying = I::decode(p.zinv, p.varying);
-                        color[i] = pack(S::pixel_shader(&varying, surface, uniforms));
+                        color[i] = pack(stage.pixel_shader(&varying, surface));
                     }
                 }
             },
         );
-        if S::BATCH_SHADING {
+        if BATCH {
             written = visible.index.len() as u64;
         }
         self.stats.pixels_written += written;
         self.stats.depth_rejected += rejected;
-        if let (true, Some(color)) = (S::BATCH_SHADING, color) {
-            visible.shade::<S, I>(surface, uniforms, color);
+        if let (true, Some(color)) = (BATCH, color) {
+            visible.shade::<S, I>(stage, surface, color);
         }
     }
 
     /// Section 2: each corner in front of the near plane as one pixel.
-    fn draw_points(
+    fn draw_points<S: Stage<Varying = V>>(
         &mut self,
+        stage: &S,
         screen: &Screen,
-        corners: &[CameraVertex<S::Varying>; 3],
+        corners: &[CameraVertex<V>; 3],
         surface: &Surface,
-        uniforms: &Uniforms,
         target: &mut Target,
     ) {
         for &c in corners {
@@ -318,19 +355,19 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Pipeline<S, I, R> {
             };
             let stats = &mut self.stats;
             R::point(s, &screen.viewport, |p| {
-                stats.count(shade_pixel::<S, I>(p, surface, uniforms, target))
+                stats.count(shade_pixel::<S, I>(stage, p, surface, target))
             });
         }
     }
 
     /// The handout's `DrawPolygonEdges`: a line from corner i to corner (i + 1) mod 3,
     /// each cut at the near plane and the guard band first.
-    fn draw_edges(
+    fn draw_edges<S: Stage<Varying = V>>(
         &mut self,
+        stage: &S,
         screen: &Screen,
-        corners: &[CameraVertex<S::Varying>; 3],
+        corners: &[CameraVertex<V>; 3],
         surface: &Surface,
-        uniforms: &Uniforms,
         target: &mut Target,
     ) {
         for i in 0..3 {
@@ -352,7 +389,7 @@ impl<S: Stage, I: Interpolation, R: Rasterizer> Pipeline<S, I, R> {
             let Some((a, b)) = banded else { continue };
             let stats = &mut self.stats;
             R::line(a, b, &screen.viewport, |p| {
-                stats.count(shade_pixel::<S, I>(p, surface, uniforms, target))
+                stats.count(shade_pixel::<S, I>(stage, p, surface, target))
             });
         }
     }
@@ -412,9 +449,9 @@ impl Stats {
 /// then the stage's colour into the target. Returns whether it was written.
 #[inline(always)]
 fn shade_pixel<S: Stage, I: Interpolation>(
+    stage: &S,
     p: Pixel<S::Varying>,
     surface: &Surface,
-    uniforms: &Uniforms,
     target: &mut Target,
 ) -> bool {
     let i = target.index(p.x, p.y);
@@ -422,11 +459,7 @@ fn shade_pixel<S: Stage, I: Interpolation>(
     let written = depth_test::<S>(depth_buffer, i, p.zinv);
     if written {
         if let Some(color) = target.color.as_deref_mut() {
-            color[i] = pack(S::pixel_shader(
-                &I::decode(p.zinv, p.varying),
-                surface,
-                uniforms,
-            ));
+            color[i] = pack(stage.pixel_shader(&I::decode(p.zinv, p.varying), surface));
         }
     }
     written
@@ -522,45 +555,10 @@ impl Screen {
     }
 }
 
-/// Any pipeline behind one interface, for choosing a stage at run time.
-pub trait Render {
-    /// Sizes `frame` to the camera's image and draws `mesh` into all of it.
-    fn render(&mut self, mesh: &Mesh, camera: &Camera, uniforms: &Uniforms, frame: &mut Frame);
-
-    /// [`Pipeline::draw`]: draws `mesh` into `target`, a band of the camera's image.
-    fn draw(&mut self, mesh: &Mesh, camera: &Camera, uniforms: &Uniforms, target: &mut Target);
-
-    /// What the last frame did.
-    fn stats(&self) -> Stats;
-
-    /// Whether the stage tests depth, so its target needs a depth buffer.
-    fn depth_test(&self) -> bool;
-}
-
-impl<S: Stage, I: Interpolation, R: Rasterizer> Render for Pipeline<S, I, R> {
-    fn stats(&self) -> Stats {
-        self.stats
-    }
-
-    fn depth_test(&self) -> bool {
-        S::DEPTH_TEST
-    }
-
-    fn draw(&mut self, mesh: &Mesh, camera: &Camera, uniforms: &Uniforms, target: &mut Target) {
-        Pipeline::draw(self, mesh, camera, uniforms, target)
-    }
-
-    fn render(&mut self, mesh: &Mesh, camera: &Camera, uniforms: &Uniforms, frame: &mut Frame) {
-        frame.resize(camera.width, camera.height, S::DEPTH_TEST);
-        self.draw(mesh, camera, uniforms, &mut frame.target());
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::pipeline::mesh::face_normal;
-    use crate::pipeline::stage::Primitive;
     use crate::pipeline::stage::{Depth, PixelLight};
     use crate::pipeline::{Affine, Light, Perspective};
 
@@ -591,12 +589,7 @@ mod tests {
             indirect: Vec3::splat(0.2),
         };
         let mut frame = Frame::default();
-        Pipeline::<PixelLight, Perspective>::new().render(
-            &mesh,
-            &camera,
-            &Uniforms::lit(light),
-            &mut frame,
-        );
+        Pipeline::<_, Perspective>::new().render(&PixelLight { light }, &mesh, &camera, &mut frame);
         let mut worst = 0u8;
         for y in 0..100 {
             for x in 0..100 {
@@ -618,22 +611,6 @@ mod tests {
         assert!(worst <= 2, "largest difference {worst}");
     }
 
-    /// `PixelLight` shaded pixel by pixel as each is found, not a triangle at a time.
-    struct Immediate;
-
-    impl Stage for Immediate {
-        type Varying = <PixelLight as Stage>::Varying;
-        const PRIMITIVE: Primitive = Primitive::Polygons;
-        const DEPTH_TEST: bool = true;
-        const BATCH_SHADING: bool = false;
-        fn vertex_shader(v: &crate::pipeline::Vertex, s: &Surface, u: &Uniforms) -> Self::Varying {
-            <PixelLight>::vertex_shader(v, s, u)
-        }
-        fn pixel_shader(v: &Self::Varying, s: &Surface, u: &Uniforms) -> Vec3 {
-            <PixelLight>::pixel_shader(v, s, u)
-        }
-    }
-
     #[test]
     fn shading_a_triangle_at_a_time_gives_the_image_of_shading_each_pixel() {
         // The wall, and in front of it a tilted triangle that hides part of it and
@@ -645,25 +622,28 @@ mod tests {
         mesh.push_triangle(tilted, face_normal(tilted), red);
         let front = [(-1.0, 0.0, 1.0), (1.0, 0.2, 1.0), (0.0, 1.0, 1.0)].map(Vec3::from);
         mesh.push_triangle(front, -Vec3::Z, Vec3::ONE);
-        let uniforms = Uniforms::lit(Light::handout());
+        let stage = PixelLight {
+            light: Light::handout(),
+        };
         for affine in [false, true] {
             let (mut batched, mut immediate) = (Frame::default(), Frame::default());
-            if affine {
-                Pipeline::<PixelLight, Affine>::new().render(
-                    &mesh,
-                    &camera,
-                    &uniforms,
-                    &mut batched,
-                );
-                Pipeline::<Immediate, Affine>::new().render(
-                    &mesh,
-                    &camera,
-                    &uniforms,
-                    &mut immediate,
-                );
-            } else {
-                Pipeline::<PixelLight>::new().render(&mesh, &camera, &uniforms, &mut batched);
-                Pipeline::<Immediate>::new().render(&mesh, &camera, &uniforms, &mut immediate);
+            fn both<I: Interpolation>(
+                stage: &PixelLight,
+                mesh: &Mesh,
+                camera: &Camera,
+                frames: [&mut Frame; 2],
+            ) {
+                let [batched, immediate] = frames;
+                let mut pipeline = Pipeline::<_, I>::new();
+                pipeline.batch_shading = true;
+                pipeline.render(stage, mesh, camera, batched);
+                pipeline.batch_shading = false;
+                pipeline.render(stage, mesh, camera, immediate);
+            }
+            let frames = [&mut batched, &mut immediate];
+            match affine {
+                true => both::<Affine>(&stage, &mesh, &camera, frames),
+                false => both::<Perspective>(&stage, &mesh, &camera, frames),
             }
             assert_eq!(batched.color, immediate.color, "affine: {affine}");
             let red_pixels = batched
@@ -686,8 +666,7 @@ mod tests {
             color: None,
             depth: Some(&mut depth),
         };
-        let uniforms = Uniforms::lit(Light::handout());
-        Pipeline::<Depth>::new().draw(&mesh, &camera, &uniforms, &mut target);
+        Pipeline::<_>::new().draw(&Depth, &mesh, &camera, &mut target);
         // 1/z = 1/2 everywhere, up to the running sums' rounding.
         assert!(
             depth.iter().all(|&z| (z - 0.5).abs() < 1e-6),

@@ -1,38 +1,22 @@
 //! The core's input: a mesh of vertices and triangular faces with materials.
 //!
-//! A vertex has a position and, when the scene has them, a normal and a texture
+//! A vertex has a position and, when the scene has them, a normal and a (u, v)
 //! coordinate; a face names three vertices, its normal (the handout's
 //! `Triangle::normal`) and its material (the handout's `Triangle::color`, the
 //! reflectance ρ of eq. 11).
 
-use super::texture::Texture;
 use glam::{Vec2, Vec3};
 
-/// What a surface is made of.
+/// What a surface is made of, as far as the handout goes: its colour.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Material {
     /// The diffuse reflectance ρ of eq. 11, linear, per channel in [0, 1].
     pub color: Vec3,
-    /// Index into [`Mesh::textures`]: where the mesh has texture coordinates, ρ
-    /// is read from this texture instead of `color` (an OBJ's `map_Kd`).
-    pub texture: Option<u32>,
-    /// Index into [`Mesh::textures`]: a tangent-space normal map that tilts the
-    /// surface's normal per pixel, where the mesh has texture coordinates.
-    pub normal_map: Option<u32>,
-    /// Index into [`Mesh::textures`]: a height map (its red channel, 0 to 1) that
-    /// offsets the texture coordinates along the view for parallax.
-    pub height_map: Option<u32>,
 }
 
 impl Material {
-    /// A material of one colour, without a texture.
-    pub const fn plain(color: Vec3) -> Material {
-        Material {
-            color,
-            texture: None,
-            normal_map: None,
-            height_map: None,
-        }
+    pub const fn new(color: Vec3) -> Material {
+        Material { color }
     }
 }
 
@@ -53,7 +37,7 @@ pub struct Vertex {
     pub position: Vec3,
     /// The vertex normal where the mesh has them, else the face's normal.
     pub normal: Vec3,
-    /// The texture coordinate where the mesh has them, else zero.
+    /// The (u, v) coordinate where the mesh has them, else zero.
     pub uv: Vec2,
 }
 
@@ -66,8 +50,6 @@ pub struct Mesh {
     pub uvs: Vec<Vec2>,
     pub faces: Vec<Face>,
     pub materials: Vec<Material>,
-    /// The images materials read ρ from.
-    pub textures: Vec<Texture>,
 }
 
 /// A face with its corners and material resolved: the handout's `Triangle`, which
@@ -98,23 +80,6 @@ impl Triangle {
     }
 }
 
-/// The directions of increasing u and v on a triangle with corners `p` and
-/// texture coordinates `uv`, made perpendicular to `normal` and unit length: the
-/// tangent frame a tangent-space normal map is read in. Zero vectors where the
-/// coordinates do not span the triangle.
-pub fn tangent_frame(p: [Vec3; 3], uv: [Vec2; 3], normal: Vec3) -> (Vec3, Vec3) {
-    let (e1, e2) = (p[1] - p[0], p[2] - p[0]);
-    let (d1, d2) = (uv[1] - uv[0], uv[2] - uv[0]);
-    let det = d1.x * d2.y - d2.x * d1.y;
-    if det == 0.0 || !det.is_finite() {
-        return (Vec3::ZERO, Vec3::ZERO);
-    }
-    let tangent = (e1 * d2.y - e2 * d1.y) / det;
-    let bitangent = (e2 * d1.x - e1 * d2.x) / det;
-    let along = |v: Vec3| (v - normal * normal.dot(v)).normalize_or_zero();
-    (along(tangent), along(bitangent))
-}
-
 /// The handout's face normal, `normalize((v2 - v0) × (v1 - v0))`; zero for a
 /// degenerate triangle.
 pub fn face_normal([v0, v1, v2]: [Vec3; 3]) -> Vec3 {
@@ -122,7 +87,7 @@ pub fn face_normal([v0, v1, v2]: [Vec3; 3]) -> Vec3 {
 }
 
 impl Mesh {
-    /// A mesh of separate triangles (no shared vertices, no normals or texture
+    /// A mesh of separate triangles (no shared vertices, no normals or (u, v)
     /// coordinates), one material per distinct colour.
     pub fn from_triangles(triangles: &[Triangle]) -> Self {
         let mut mesh = Mesh::default();
@@ -135,14 +100,10 @@ impl Mesh {
     /// Adds a triangle with its own three vertices, its face normal and a material
     /// of colour `color` (shared with earlier faces of the same colour).
     pub fn push_triangle(&mut self, corners: [Vec3; 3], normal: Vec3, color: Vec3) {
-        let material = match self
-            .materials
-            .iter()
-            .position(|m| *m == Material::plain(color))
-        {
+        let material = match self.materials.iter().position(|m| m.color == color) {
             Some(i) => i,
             None => {
-                self.materials.push(Material::plain(color));
+                self.materials.push(Material { color });
                 self.materials.len() - 1
             }
         } as u32;
@@ -197,26 +158,6 @@ impl Mesh {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn the_tangent_frame_follows_u_and_v() {
-        // A triangle in the z = 0 plane whose texture coordinates are its x and
-        // -y (v up, y down): u grows along x, v along -y.
-        let p = [
-            Vec3::ZERO,
-            Vec3::new(2.0, 0.0, 0.0),
-            Vec3::new(0.0, -2.0, 0.0),
-        ];
-        let uv = [Vec2::ZERO, Vec2::new(1.0, 0.0), Vec2::new(0.0, 1.0)];
-        let (t, b) = tangent_frame(p, uv, Vec3::Z);
-        assert!((t - Vec3::X).length() < 1e-6, "{t}");
-        assert!((b + Vec3::Y).length() < 1e-6, "{b}");
-        // Coordinates that do not span the triangle give no frame.
-        assert_eq!(
-            tangent_frame(p, [Vec2::ZERO; 3], Vec3::Z),
-            (Vec3::ZERO, Vec3::ZERO)
-        );
-    }
 
     #[test]
     fn triangles_round_trip_through_a_mesh() {

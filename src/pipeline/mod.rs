@@ -15,9 +15,6 @@
 //!   `ComputePolygonRows` and `DrawPolygonRows`.
 //! - [`interpolate`](mod@interpolate): `Interpolate` for any per-pixel struct, and
 //!   perspective-correct or affine interpolation.
-//! - [`texture`]: images that a material's reflectance is read from.
-//! - [`shadow`]: a cube shadow map from the point light, for `--shadows` (drawn by
-//!   the caller's depth pass, so that it needs nothing of [`draw`]).
 //! - [`target`]: colour and depth buffers over a band of rows, and 8-bit packing.
 //! - [`draw`]: the handout's `Draw` and `DrawPolygon`, which joins them.
 //!
@@ -30,17 +27,16 @@ pub mod interpolate;
 pub mod light;
 pub mod mesh;
 pub mod raster;
-pub mod shadow;
 pub mod stage;
 pub mod target;
-pub mod texture;
 
 pub use camera::Camera;
-pub use draw::{Pipeline, Render};
+pub use draw::{Cull, Pipeline, Stats};
 pub use interpolate::{interpolate, Affine, Interpolation, Nothing, Perspective, Pixel, Varying};
 pub use light::Light;
 pub use mesh::{Face, Material, Mesh, Triangle, Vertex};
 pub use raster::RowRaster;
-pub use stage::{Depth, Filled, PixelLight, Points, Stage, Uniforms, VertexLight, Wireframe};
+pub use stage::{
+    Depth, Filled, Lighting, PixelLight, Points, Primitive, Stage, Surface, VertexLight, Wireframe,
+};
 pub use target::{Frame, Target};
-pub use texture::{Filter, Texture};

@@ -117,7 +117,6 @@ pub fn subdivide(mesh: &Mesh, k: u32) -> Mesh {
     let corners_per_face = ((k + 1) * (k + 2) / 2) as usize;
     let mut out = Mesh {
         materials: mesh.materials.clone(),
-        textures: mesh.textures.clone(),
         ..Mesh::default()
     };
     out.positions.reserve(mesh.faces.len() * corners_per_face);

@@ -13,6 +13,7 @@ pub use cornell::{cornell_box, subdivide};
 pub use obj::{load_obj, obj_text, read_obj};
 pub use procedural::{grid, sphere};
 
+use crate::extensions::texture::{Maps, Model};
 use crate::pipeline::Mesh;
 use glam::Vec3;
 use std::path::Path;
@@ -24,6 +25,9 @@ pub struct Scene {
     /// extension for a model (`bunny`).
     pub name: String,
     pub mesh: Mesh,
+    /// The images its materials read beyond their colours (an OBJ's `map_Kd`,
+    /// `--texture`, `--normal-map`).
+    pub maps: Maps,
     /// The handout's box, possibly subdivided: drawn with the handout's default
     /// camera and light rather than framed by its bounding sphere.
     pub is_box: bool,
@@ -33,6 +37,22 @@ pub struct Scene {
     /// What a reader should know about how the file was read (see
     /// [`obj::read_obj`]).
     pub warnings: Vec<String>,
+}
+
+impl Scene {
+    /// The mesh with its maps, as the stages draw it.
+    pub fn model(&self) -> Model<'_> {
+        Model {
+            mesh: &self.mesh,
+            maps: &self.maps,
+        }
+    }
+}
+
+impl<'a> From<&'a Scene> for Model<'a> {
+    fn from(scene: &'a Scene) -> Self {
+        scene.model()
+    }
 }
 
 /// The tilt a grid is looked at with: from above, at an angle.
@@ -46,10 +66,11 @@ pub fn parse_scene(spec: &str) -> Result<Scene, String> {
     if spec.to_lowercase().ends_with(".obj") {
         let path = Path::new(spec);
         let name = path.file_stem().unwrap_or_default().to_string_lossy();
-        let (mesh, warnings) = read_obj(path)?;
+        let (mesh, maps, warnings) = read_obj(path)?;
         return Ok(Scene {
             name: name.into_owned(),
             mesh,
+            maps,
             is_box: false,
             pitch: 0.0,
             warnings,
@@ -80,6 +101,7 @@ pub fn parse_scene(spec: &str) -> Result<Scene, String> {
     Ok(Scene {
         name: spec.to_string(),
         mesh,
+        maps: Maps::default(),
         is_box,
         pitch: if kind == "grid" { GRID_PITCH } else { 0.0 },
         warnings: Vec::new(),

@@ -29,6 +29,7 @@
 
 use super::cornell::WHITE;
 use super::input::open_regular;
+use crate::extensions::texture::Maps;
 use crate::pipeline::mesh::{face_normal, Face, Material, Mesh};
 use glam::{Vec2, Vec3};
 use std::cell::RefCell;
@@ -53,15 +54,16 @@ fn flip(v: Vec3) -> Vec3 {
     Vec3::new(v.x, -v.y, -v.z)
 }
 
-/// Reads an OBJ file (and the MTL files it names) into a mesh.
+/// Reads an OBJ file (and the MTL files it names) into a mesh: its geometry
+/// and colours, without the images [`read_obj`] also gives.
 pub fn load_obj(path: &Path) -> Result<Mesh, String> {
-    read_obj(path).map(|(mesh, _)| mesh)
+    read_obj(path).map(|(mesh, _, _)| mesh)
 }
 
-/// [`load_obj`], with the warnings a reader should see: what the file asks for
+/// [`load_obj`], with the images its materials read and the warnings a reader should see: what the file asks for
 /// that is drawn otherwise (a material that is not defined, a colour outside
 /// [0, 1], a face with fewer than three corners, a `map_Kd` option not used).
-pub fn read_obj(path: &Path) -> Result<(Mesh, Vec<String>), String> {
+pub fn read_obj(path: &Path) -> Result<(Mesh, Maps, Vec<String>), String> {
     let fail = |why: String| format!("{}: {why}", path.display());
     let file = open_regular(path).map_err(fail)?;
     let mut reader = Lines::new(BufReader::new(file), Kind::Obj);
@@ -104,8 +106,8 @@ pub fn read_obj(path: &Path) -> Result<(Mesh, Vec<String>), String> {
         .iter()
         .map(|m| m.diffuse_texture.as_deref().map(TextureMap::parse))
         .collect();
-    let mut mesh = to_mesh(&models, &materials, &maps).map_err(fail)?;
-    load_diffuse_textures(&mut mesh, &materials, &maps, dir).map_err(fail)?;
+    let mesh = to_mesh(&models, &materials, &maps).map_err(fail)?;
+    let images = load_diffuse_textures(&materials, &maps, dir).map_err(fail)?;
     let mut warnings = reader.warnings(&materials);
     for (m, map) in materials.iter().zip(&maps) {
         if let Some(kd) = m.diffuse {
@@ -123,7 +125,7 @@ pub fn read_obj(path: &Path) -> Result<(Mesh, Vec<String>), String> {
             ));
         }
     }
-    Ok((mesh, warnings.into_iter().map(fail).collect()))
+    Ok((mesh, images, warnings.into_iter().map(fail).collect()))
 }
 
 /// A `map_Kd` statement: its options, then the file name (which may hold
@@ -188,11 +190,11 @@ impl TextureMap {
 /// Each material's `map_Kd` image, read relative to the OBJ file's folder, as
 /// that material's texture (shared by the materials that name the same file).
 fn load_diffuse_textures(
-    mesh: &mut Mesh,
     materials: &[tobj::Material],
     maps: &[Option<TextureMap>],
     dir: &Path,
-) -> Result<(), String> {
+) -> Result<Maps, String> {
+    let mut images = Maps::default();
     let mut loaded: HashMap<&str, u32> = HashMap::new();
     for (i, (m, map)) in materials.iter().zip(maps).enumerate() {
         let Some(map) = map else {
@@ -207,15 +209,14 @@ fn load_diffuse_textures(
             None => {
                 let texture = super::texture::load_texture(&dir.join(name))
                     .map_err(|e| format!("material {}: map_Kd: {e}", m.name))?;
-                mesh.textures.push(texture);
-                let index = mesh.textures.len() as u32 - 1;
+                let index = images.push(texture);
                 loaded.insert(name, index);
                 index
             }
         };
-        mesh.materials[i].texture = Some(index);
+        images.of_mut(i).texture = Some(index);
     }
-    Ok(())
+    Ok(images)
 }
 
 /// Reads one MTL file; the error names it and, where known, the line.
@@ -244,7 +245,7 @@ fn to_mesh(
         materials: materials
             .iter()
             .map(|m| {
-                Material::plain(
+                Material::new(
                     m.diffuse
                         .map_or(WHITE, |kd| Vec3::from(kd).clamp(Vec3::ZERO, Vec3::ONE)),
                 )
@@ -286,7 +287,7 @@ fn to_mesh(
         let material = match m.material_id {
             Some(i) if i < materials.len() => i as u32,
             _ => *default.get_or_insert_with(|| {
-                mesh.materials.push(Material::plain(WHITE));
+                mesh.materials.push(Material::new(WHITE));
                 mesh.materials.len() as u32 - 1
             }),
         };

@@ -98,7 +98,7 @@ fn build(
     at: impl Fn(usize) -> (Vec3, Vec3, Vec2),
 ) -> Mesh {
     let mut mesh = Mesh {
-        materials: vec![Material::plain(color)],
+        materials: vec![Material::new(color)],
         ..Mesh::default()
     };
     let mut id = vec![u32::MAX; keys];

@@ -3,7 +3,8 @@
 //! has none.
 
 use super::Scene;
-use crate::pipeline::{Material, Mesh, Texture};
+use crate::extensions::texture::Texture;
+use crate::pipeline::Mesh;
 use glam::{Vec2, Vec3};
 use std::path::Path;
 
@@ -91,7 +92,7 @@ pub fn apply_texture(scene: &mut Scene, spec: &TextureSpec) -> Result<(), String
         TextureSpec::Image(path) => Some(load_texture(path)?),
         TextureSpec::None => {
             scene
-                .mesh
+                .maps
                 .materials
                 .iter_mut()
                 .for_each(|m| m.texture = None);
@@ -99,26 +100,17 @@ pub fn apply_texture(scene: &mut Scene, spec: &TextureSpec) -> Result<(), String
         }
     };
     let textured = surfaces_to_map(scene);
-    let mesh = &mut scene.mesh;
-    let shared = image.map(|t| {
-        mesh.textures.push(t);
-        mesh.textures.len() as u32 - 1
-    });
-    for (material, textured) in mesh.materials.iter_mut().zip(textured) {
+    let maps = &mut scene.maps;
+    let shared = image.map(|t| maps.push(t));
+    for (i, (material, textured)) in scene.mesh.materials.iter().zip(textured).enumerate() {
         if !textured {
             continue;
         }
         let index = match shared {
-            Some(i) => i,
-            None => {
-                mesh.textures.push(checker(material.color));
-                mesh.textures.len() as u32 - 1
-            }
+            Some(index) => index,
+            None => maps.push(checker(material.color)),
         };
-        *material = Material {
-            texture: Some(index),
-            ..*material
-        };
+        maps.of_mut(i).texture = Some(index);
     }
     Ok(())
 }
@@ -192,13 +184,12 @@ fn bump_texture(texel: impl Fn(f32, f32, f32) -> Vec3) -> Texture {
 /// Gives the surfaces with a normal map the bumps' heights, for parallax. The
 /// heights belong to the bumps: another map has none to give.
 pub fn apply_parallax(scene: &mut Scene) {
-    let mesh = &mut scene.mesh;
-    if !mesh.materials.iter().any(|m| m.normal_map.is_some()) {
+    let maps = &mut scene.maps;
+    if !maps.materials.iter().any(|m| m.normal_map.is_some()) {
         return;
     }
-    mesh.textures.push(bump_heights());
-    let index = mesh.textures.len() as u32 - 1;
-    for material in mesh.materials.iter_mut().filter(|m| m.normal_map.is_some()) {
+    let index = maps.push(bump_heights());
+    for material in maps.materials.iter_mut().filter(|m| m.normal_map.is_some()) {
         material.height_map = Some(index);
     }
 }
@@ -217,12 +208,10 @@ pub fn parse_normal_map(spec: &str) -> Result<Texture, String> {
 /// Gives `scene` the normal map `map`, on the surfaces a texture would go on.
 pub fn apply_normal_map(scene: &mut Scene, map: Texture) {
     let mapped = surfaces_to_map(scene);
-    let mesh = &mut scene.mesh;
-    mesh.textures.push(map);
-    let index = mesh.textures.len() as u32 - 1;
-    for (material, mapped) in mesh.materials.iter_mut().zip(mapped) {
+    let index = scene.maps.push(map);
+    for (i, mapped) in mapped.into_iter().enumerate() {
         if mapped {
-            material.normal_map = Some(index);
+            scene.maps.of_mut(i).normal_map = Some(index);
         }
     }
 }
@@ -243,7 +232,6 @@ pub fn planar_uvs(mesh: &Mesh) -> Mesh {
     let extent = (high - low).max(Vec3::splat(f32::MIN_POSITIVE));
     let mut out = Mesh {
         materials: mesh.materials.clone(),
-        textures: mesh.textures.clone(),
         ..Mesh::default()
     };
     for face in &mesh.faces {
@@ -281,7 +269,8 @@ mod tests {
     #[test]
     fn checker_alternates_its_colour_and_a_darker_one() {
         let t = checker(Vec3::ONE);
-        let at = |x: f32, y: f32| t.sample(Vec2::new(x, y), crate::pipeline::Filter::Nearest);
+        let at =
+            |x: f32, y: f32| t.sample(Vec2::new(x, y), crate::extensions::texture::Filter::Nearest);
         let step = 1.0 / CHECKER_SQUARES as f32;
         assert_eq!(at(0.5 * step, 1.0 - 0.5 * step), Vec3::ONE);
         assert_eq!(at(1.5 * step, 1.0 - 0.5 * step), Vec3::splat(CHECKER_DARK));
@@ -295,12 +284,13 @@ mod tests {
         let mesh = &scene.mesh;
         assert_eq!(mesh.uvs.len(), mesh.positions.len());
         assert_eq!(
-            mesh.textures.len(),
+            scene.maps.images.len(),
             5,
             "floor, two walls, ceiling, back wall"
         );
         for (i, face) in mesh.faces.iter().enumerate() {
-            assert_eq!(mesh.material(face).texture.is_some(), i < 10, "face {i}");
+            let texture = scene.maps.of(face.material).texture;
+            assert_eq!(texture.is_some(), i < 10, "face {i}");
         }
         // Every coordinate lies in [0, 1]: the box spans its own bounding box.
         assert!(mesh
@@ -314,7 +304,7 @@ mod tests {
         let mut scene = parse_scene("cornell").unwrap();
         apply_texture(&mut scene, &TextureSpec::Checker).unwrap();
         apply_texture(&mut scene, &TextureSpec::parse("none")).unwrap();
-        assert!(scene.mesh.materials.iter().all(|m| m.texture.is_none()));
+        assert!(scene.maps.materials.iter().all(|m| m.texture.is_none()));
     }
 
     #[test]

@@ -17,9 +17,7 @@ use super::walk::Walk;
 use crate::measure::figure::StageName;
 use crate::pipeline::interpolate::{Affine, Interpolation, Perspective};
 use crate::pipeline::target::{pack, unpack};
-use crate::pipeline::{
-    Camera, Frame, Light, Mesh, Pipeline, Points, Render, Stage, Uniforms, Wireframe,
-};
+use crate::pipeline::{Camera, Frame, Light, Mesh, Pipeline, Points, Stage, Wireframe};
 use crate::scene::cornell;
 use glam::Vec3;
 
@@ -220,19 +218,19 @@ pub struct Measured {
     pub(super) interior: Vec<bool>,
 }
 
-fn draw<S: Stage, I: Interpolation>(mesh: &Mesh, camera: &Camera, uniforms: &Uniforms) -> Frame {
+fn draw<S: Stage, I: Interpolation>(stage: &S, mesh: &Mesh, camera: &Camera) -> Frame {
     let mut frame = Frame::default();
-    Pipeline::<S, I, StudentRaster>::new().render(mesh, camera, uniforms, &mut frame);
+    Pipeline::<S::Varying, I, StudentRaster>::new().render(stage, mesh, camera, &mut frame);
     frame
 }
 
 /// The light with power 1 and no indirect light: what the lit passes draw with.
-fn unit_light(position: Vec3) -> Uniforms<'static> {
-    Uniforms::lit(Light {
+fn unit_light(position: Vec3) -> Light {
+    Light {
         position,
         power: Vec3::ONE,
         indirect: Vec3::ZERO,
-    })
+    }
 }
 
 /// The direct light per unit power at each pixel, as `h` interpolates it.
@@ -241,14 +239,30 @@ pub(super) fn direct_pass(h: Hypothesis, mesh: &Mesh, camera: &Camera, light: Ve
     let depth = h.geometry.depth != DepthMode::None;
     let frame = with_geometry(h.geometry, || {
         match (h.stage == StageName::VertexLight, depth, h.affine) {
-            (true, true, true) => draw::<DirectPerVertex<true>, Affine>(mesh, camera, &u),
-            (true, true, false) => draw::<DirectPerVertex<true>, Perspective>(mesh, camera, &u),
-            (true, false, true) => draw::<DirectPerVertex<false>, Affine>(mesh, camera, &u),
-            (true, false, false) => draw::<DirectPerVertex<false>, Perspective>(mesh, camera, &u),
-            (false, true, true) => draw::<DirectPerPixel<true>, Affine>(mesh, camera, &u),
-            (false, true, false) => draw::<DirectPerPixel<true>, Perspective>(mesh, camera, &u),
-            (false, false, true) => draw::<DirectPerPixel<false>, Affine>(mesh, camera, &u),
-            (false, false, false) => draw::<DirectPerPixel<false>, Perspective>(mesh, camera, &u),
+            (true, true, true) => {
+                draw::<_, Affine>(&DirectPerVertex::<true> { light: u }, mesh, camera)
+            }
+            (true, true, false) => {
+                draw::<_, Perspective>(&DirectPerVertex::<true> { light: u }, mesh, camera)
+            }
+            (true, false, true) => {
+                draw::<_, Affine>(&DirectPerVertex::<false> { light: u }, mesh, camera)
+            }
+            (true, false, false) => {
+                draw::<_, Perspective>(&DirectPerVertex::<false> { light: u }, mesh, camera)
+            }
+            (false, true, true) => {
+                draw::<_, Affine>(&DirectPerPixel::<true> { light: u }, mesh, camera)
+            }
+            (false, true, false) => {
+                draw::<_, Perspective>(&DirectPerPixel::<true> { light: u }, mesh, camera)
+            }
+            (false, false, true) => {
+                draw::<_, Affine>(&DirectPerPixel::<false> { light: u }, mesh, camera)
+            }
+            (false, false, false) => {
+                draw::<_, Perspective>(&DirectPerPixel::<false> { light: u }, mesh, camera)
+            }
         }
     });
     frame.color.iter().map(|&c| decode(c)).collect()
@@ -256,7 +270,6 @@ pub(super) fn direct_pass(h: Hypothesis, mesh: &Mesh, camera: &Camera, light: Ve
 
 /// Draws what `h` shows on `mesh` with the light at `light`.
 pub fn measure(h: Hypothesis, mesh: &Mesh, camera: &Camera, light: Vec3) -> Measured {
-    let u = unit_light(light);
     let (w, h_px) = (camera.width, camera.height);
     let n = (w * h_px) as usize;
     let mut surface = vec![NONE; n];
@@ -265,8 +278,8 @@ pub fn measure(h: Hypothesis, mesh: &Mesh, camera: &Camera, light: Vec3) -> Meas
     match h.stage {
         StageName::Points | StageName::Wireframe => {
             let frame = with_geometry(h.geometry, || match h.stage {
-                StageName::Points => draw::<Points, Affine>(mesh, camera, &u),
-                _ => draw::<Wireframe, Affine>(mesh, camera, &u),
+                StageName::Points => draw::<_, Affine>(&Points, mesh, camera),
+                _ => draw::<_, Affine>(&Wireframe, mesh, camera),
             });
             surfaces.push((Vec3::ONE, Vec3::ZERO));
             for (s, &c) in surface.iter_mut().zip(&frame.color) {
@@ -280,13 +293,13 @@ pub fn measure(h: Hypothesis, mesh: &Mesh, camera: &Camera, light: Vec3) -> Meas
             let (colors, normals) = with_geometry(h.geometry, || {
                 if depth {
                     (
-                        draw::<Shows<true, false>, Affine>(mesh, camera, &u),
-                        draw::<Shows<true, true>, Affine>(mesh, camera, &u),
+                        draw::<_, Affine>(&Shows::<true, false>, mesh, camera),
+                        draw::<_, Affine>(&Shows::<true, true>, mesh, camera),
                     )
                 } else {
                     (
-                        draw::<Shows<false, false>, Affine>(mesh, camera, &u),
-                        draw::<Shows<false, true>, Affine>(mesh, camera, &u),
+                        draw::<_, Affine>(&Shows::<false, false>, mesh, camera),
+                        draw::<_, Affine>(&Shows::<false, true>, mesh, camera),
                     )
                 }
             });

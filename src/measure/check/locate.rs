@@ -13,7 +13,7 @@
 //! black bands: those are the render's own).
 
 use crate::measure::figure::Figure;
-use crate::pipeline::{Camera, Frame, Light, Uniforms};
+use crate::pipeline::{Camera, Frame, Light};
 use crate::scene::cornell_box;
 
 /// The render found inside a screenshot, and what was done to find it.
@@ -123,11 +123,10 @@ fn figures_at(side: u32) -> Vec<Frame> {
         focal: side as f32,
         ..Camera::handout(side, side)
     };
-    let uniforms = Uniforms::lit(Light::handout());
     let mesh = cornell_box();
     Figure::FIGURES
         .iter()
-        .map(|f| f.render(&mesh, &camera, &uniforms))
+        .map(|f| f.render(&mesh, &camera, Light::handout()))
         .collect()
 }
 

@@ -11,9 +11,8 @@
 //! pattern search from 0.25 units and 4 degrees down to 0.001 units and 1/64
 //! degree on every third pixel, then the best of those on every pixel.
 
-use crate::measure::figure::{Figure, StageName};
 use crate::pipeline::target::unpack;
-use crate::pipeline::{Camera, Frame, Light, Uniforms};
+use crate::pipeline::{Camera, Depth, Frame, Pipeline};
 use crate::scene::cornell_box;
 use glam::Vec3;
 
@@ -108,16 +107,15 @@ fn refine(start: ([f32; 5], f64), score: &dyn Fn([f32; 5]) -> f64) -> ([f32; 5],
 pub fn fit_pose(observed: &Frame, start: Camera) -> Pose {
     let seen: Vec<Option<[f32; 3]>> = observed.color.iter().map(|&c| chroma(c)).collect();
     let mesh = cornell_box();
-    let uniforms = Uniforms::lit(Light::handout());
     // One pipeline and one frame for the whole search, drawn into again and
     // again (a few thousand poses).
-    let pipeline = std::cell::RefCell::new(Figure::of(StageName::Depth).pipeline_for(&mesh));
+    let pipeline = std::cell::RefCell::new(Pipeline::<_>::new());
     let frame = std::cell::RefCell::new(Frame::default());
     let score_at = |camera: &Camera, stride: usize| -> f64 {
         let mut drawn = frame.borrow_mut();
         pipeline
             .borrow_mut()
-            .render(&mesh, camera, &uniforms, &mut drawn);
+            .render(&Depth, &mesh, camera, &mut drawn);
         let pairs = drawn.color.iter().zip(&seen).step_by(stride);
         let (mut same, mut all) = (0usize, 0usize);
         for (&c, &s) in pairs {

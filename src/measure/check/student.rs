@@ -16,7 +16,8 @@ use crate::pipeline::interpolate::{Nothing, Pixel, Varying};
 use crate::pipeline::mesh::Vertex;
 use crate::pipeline::raster::rows::{draw_polygon_rows, Rows};
 use crate::pipeline::raster::{Rasterizer, Viewport};
-use crate::pipeline::stage::{Primitive, Stage, Surface, Uniforms};
+use crate::pipeline::stage::{Primitive, Stage, Surface};
+use crate::pipeline::Light;
 use glam::Vec3;
 use std::cell::Cell;
 
@@ -168,54 +169,58 @@ impl<const DEPTH: bool, const NORMAL: bool> Stage for Shows<DEPTH, NORMAL> {
     const PRIMITIVE: Primitive = Primitive::Polygons;
     const DEPTH_TEST: bool = DEPTH;
 
-    fn vertex_shader(_: &Vertex, _: &Surface, _: &Uniforms) -> Nothing {
+    fn vertex_shader(&self, _: &Vertex, _: &Surface) -> Nothing {
         Nothing {}
     }
 
-    fn pixel_shader(_: &Nothing, surface: &Surface, _: &Uniforms) -> Vec3 {
+    fn pixel_shader(&self, _: &Nothing, surface: &Surface) -> Vec3 {
         if NORMAL {
             surface.normal * 0.5 + 0.5
         } else {
-            surface.material.color
+            surface.reflectance
         }
     }
 }
 
 /// Eq. 10 per unit power at each pixel, from the interpolated 3D position
 /// (section 6.2), encoded: draw with a light of power 1.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct DirectPerPixel<const DEPTH: bool>;
+#[derive(Clone, Copy, Debug)]
+pub struct DirectPerPixel<const DEPTH: bool> {
+    pub light: Light,
+}
 
 impl<const DEPTH: bool> Stage for DirectPerPixel<DEPTH> {
     type Varying = crate::pipeline::stage::Position;
     const PRIMITIVE: Primitive = Primitive::Polygons;
     const DEPTH_TEST: bool = DEPTH;
 
-    fn vertex_shader(vertex: &Vertex, _: &Surface, _: &Uniforms) -> Self::Varying {
+    fn vertex_shader(&self, vertex: &Vertex, _: &Surface) -> Self::Varying {
         crate::pipeline::stage::Position {
             world: vertex.position,
         }
     }
 
-    fn pixel_shader(varying: &Self::Varying, surface: &Surface, uniforms: &Uniforms) -> Vec3 {
-        encode(uniforms.light.direct(varying.world, surface.normal).x)
+    fn pixel_shader(&self, varying: &Self::Varying, surface: &Surface) -> Vec3 {
+        encode(self.light.direct(varying.world, surface.normal).x)
     }
 }
 
 /// Eq. 10 per unit power at each vertex, interpolated (section 6.1), encoded.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct DirectPerVertex<const DEPTH: bool>;
+#[derive(Clone, Copy, Debug)]
+pub struct DirectPerVertex<const DEPTH: bool> {
+    pub light: Light,
+}
 
 impl<const DEPTH: bool> Stage for DirectPerVertex<DEPTH> {
     type Varying = f32;
     const PRIMITIVE: Primitive = Primitive::Polygons;
     const DEPTH_TEST: bool = DEPTH;
 
-    fn vertex_shader(vertex: &Vertex, _: &Surface, uniforms: &Uniforms) -> f32 {
-        uniforms.light.direct(vertex.position, vertex.normal).x
+    fn vertex_shader(&self, vertex: &Vertex, _: &Surface) -> f32 {
+        self.light.direct(vertex.position, vertex.normal).x
     }
 
-    fn pixel_shader(varying: &f32, _: &Surface, _: &Uniforms) -> Vec3 {
+    fn pixel_shader(&self, varying: &f32, _: &Surface) -> Vec3 {
         encode(*varying)
     }
 }
@@ -228,21 +233,26 @@ mod tests {
     #[test]
     fn the_default_geometry_draws_the_handouts_figures() {
         use crate::pipeline::{Camera, Depth, Perspective};
-        use crate::pipeline::{Frame, Light, Pipeline, PixelLight, Render, Wireframe};
+        use crate::pipeline::{Frame, Pipeline, PixelLight, Wireframe};
         let (mesh, camera) = (crate::scene::cornell_box(), Camera::handout(200, 150));
-        let uniforms = Uniforms::lit(Light::handout());
-        fn both<S: Stage>(mesh: &crate::pipeline::Mesh, c: &Camera, u: &Uniforms) -> [Frame; 2] {
+        fn both<S: Stage>(stage: &S, mesh: &crate::pipeline::Mesh, c: &Camera) -> [Frame; 2] {
             let (mut core, mut student) = (Frame::default(), Frame::default());
-            Pipeline::<S, Perspective>::new().render(mesh, c, u, &mut core);
+            Pipeline::<S::Varying, Perspective>::new().render(stage, mesh, c, &mut core);
             with_geometry(Geometry::default(), || {
-                Pipeline::<S, Perspective, StudentRaster>::new().render(mesh, c, u, &mut student)
+                Pipeline::<S::Varying, Perspective, StudentRaster>::new().render(
+                    stage,
+                    mesh,
+                    c,
+                    &mut student,
+                )
             });
             [core, student]
         }
+        let light = Light::handout();
         for [core, student] in [
-            both::<Wireframe>(&mesh, &camera, &uniforms),
-            both::<Depth>(&mesh, &camera, &uniforms),
-            both::<PixelLight>(&mesh, &camera, &uniforms),
+            both(&Wireframe, &mesh, &camera),
+            both(&Depth, &mesh, &camera),
+            both(&PixelLight { light }, &mesh, &camera),
         ] {
             assert!(core.color.iter().any(|&c| c != 0));
             assert_eq!(core.color, student.color);

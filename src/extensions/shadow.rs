@@ -13,8 +13,8 @@
 //! 1/z. A larger bias detaches shadows from their casters (peter-panning); this
 //! one keeps a block's shadow touching the block at the map sizes used here.
 
-use super::camera::Camera;
-use super::target::Frame;
+use crate::pipeline::raster::EdgeRaster;
+use crate::pipeline::{Camera, Depth, Frame, Light, Lighting, Mesh, Pipeline, Surface};
 use glam::Vec3;
 use std::f32::consts::FRAC_PI_2;
 
@@ -87,20 +87,17 @@ fn face_of(d: Vec3) -> usize {
 }
 
 impl ShadowMap {
-    /// The map of a light at `light`, with six faces of `size` x `size` texels:
-    /// `draw_depth` draws the scene's 1/z as each face's camera sees it (the
-    /// caller's depth pass, so that this module needs no pipeline). `near` is the
-    /// faces' near plane: geometry closer to the light casts no shadow.
-    pub fn render(
-        light: Vec3,
-        size: u32,
-        near: f32,
-        filter: Shadows,
-        mut draw_depth: impl FnMut(&Camera) -> Frame,
-    ) -> ShadowMap {
+    /// The map of a light at `light`, with six faces of `size` x `size` texels,
+    /// each `mesh`'s 1/z as the face's camera sees it: drawn by the depth stage
+    /// with the exact rasterizer, which samples the texel centres the lookups
+    /// assume. `near` is the faces' near plane: geometry closer to the light
+    /// casts no shadow.
+    pub fn render(light: Vec3, size: u32, near: f32, filter: Shadows, mesh: &Mesh) -> ShadowMap {
+        let mut pipeline = Pipeline::<_, crate::pipeline::Perspective, EdgeRaster>::new();
         let faces = std::array::from_fn(|k| {
             let camera = face_camera(light, k, size, near);
-            let frame = draw_depth(&camera);
+            let mut frame = Frame::default();
+            pipeline.render(&Depth, mesh, &camera, &mut frame);
             (camera, frame)
         });
         ShadowMap {
@@ -112,7 +109,7 @@ impl ShadowMap {
 
     /// How much of the light reaches `position` on a surface of (geometric)
     /// `normal`: 1 lit, 0 in shadow, between with percentage-closer filtering.
-    /// Eq. 11 then becomes `ρ (v D + N)` ([`super::stage::Uniforms::reflected`]).
+    /// Eq. 11 then becomes `ρ (v D + N)` ([`Shadowed`]).
     pub fn visibility(&self, position: Vec3, normal: Vec3) -> f32 {
         let to_point = position - self.light;
         let (camera, frame) = &self.faces[face_of(to_point)];
@@ -157,15 +154,35 @@ impl ShadowMap {
     }
 }
 
+/// The handout's light with a shadow map: eq. 11 as `ρ (v D + N)`, v the share
+/// of the light the map lets reach the point (the handout's light without a
+/// map). A lit stage drawn with it (`PixelLight { light: Shadowed { .. } }`)
+/// casts shadows, and nothing else of the stage changes.
+#[derive(Clone, Copy, Debug)]
+pub struct Shadowed<'a> {
+    pub light: Light,
+    pub map: Option<&'a ShadowMap>,
+}
+
+impl Lighting for Shadowed<'_> {
+    /// The map's depth bias follows the surface's own (face) normal: a smooth or
+    /// mapped `normal` is not the slope the map was drawn with.
+    #[inline]
+    fn reflected(&self, position: Vec3, normal: Vec3, surface: &Surface, rho: Vec3) -> Vec3 {
+        match self.map {
+            Some(map) => {
+                let v = map.visibility(position, surface.normal);
+                rho * (self.light.direct(position, normal) * v + self.light.indirect)
+            }
+            None => self.light.reflected(position, normal, rho),
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::pipeline::draw::{Pipeline, Render};
-    use crate::pipeline::interpolate::Perspective;
-    use crate::pipeline::light::Light;
-    use crate::pipeline::mesh::{Mesh, Triangle};
-    use crate::pipeline::raster::EdgeRaster;
-    use crate::pipeline::stage::{Depth, Uniforms};
+    use crate::pipeline::Triangle;
 
     #[test]
     fn each_direction_falls_in_the_face_that_looks_along_it() {
@@ -198,20 +215,9 @@ mod tests {
         let mesh = Mesh::from_triangles(&triangles);
         let light = Light {
             position: Vec3::ZERO,
-            power: Vec3::ONE,
-            indirect: Vec3::ZERO,
+            ..Light::handout()
         };
-        let depth_from = |camera: &Camera| {
-            let mut frame = Frame::default();
-            Pipeline::<Depth, Perspective, EdgeRaster>::new().render(
-                &mesh,
-                camera,
-                &Uniforms::lit(light),
-                &mut frame,
-            );
-            frame
-        };
-        let map = ShadowMap::render(light.position, 256, 0.01, Shadows::Hard, depth_from);
+        let map = ShadowMap::render(light.position, 256, 0.01, Shadows::Hard, &mesh);
         let up = -Vec3::Y;
         // Under the square (its shadow reaches 0.5 from the centre at y = 2).
         assert_eq!(map.visibility(Vec3::new(0.0, 2.0, 0.0), up), 0.0);
@@ -221,7 +227,7 @@ mod tests {
         assert_eq!(map.visibility(Vec3::new(3.0, 2.0, -2.0), up), 1.0);
         assert_eq!(map.visibility(Vec3::new(0.1, 1.0, 0.1), up), 1.0);
         // Filtered: on the shadow's edge, part of the texels see the light.
-        let pcf = ShadowMap::render(light.position, 256, 0.01, Shadows::Pcf, depth_from);
+        let pcf = ShadowMap::render(light.position, 256, 0.01, Shadows::Pcf, &mesh);
         let edge = pcf.visibility(Vec3::new(0.5, 2.0, 0.0), up);
         assert!(edge > 0.0 && edge < 1.0, "{edge}");
     }

@@ -2,6 +2,7 @@
 //! addressed by texture coordinates as the design notes define them (v up, rows
 //! stored top first, coordinates outside [0, 1] repeating).
 
+use crate::pipeline::Mesh;
 use glam::{Vec2, Vec3};
 
 /// How a texture is read between its texels (`--filter`).
@@ -129,6 +130,91 @@ fn fraction(v: f32) -> f32 {
         0.0
     } else {
         f
+    }
+}
+
+/// The images one material reads, as indices into [`Maps::images`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct MaterialMaps {
+    /// Where the mesh has (u, v) coordinates, ρ is read from this texture
+    /// instead of the colour (an OBJ's `map_Kd`).
+    pub texture: Option<u32>,
+    /// A tangent-space normal map that tilts the surface's normal per pixel.
+    pub normal_map: Option<u32>,
+    /// A height map (its red channel, 0 to 1) that offsets the (u, v)
+    /// coordinates along the view for parallax.
+    pub height_map: Option<u32>,
+}
+
+/// What a mesh's materials read beyond their colours, kept beside the mesh (the
+/// pipeline's materials are the handout's: a colour each).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Maps {
+    pub images: Vec<Texture>,
+    /// Material `i` of the mesh reads `materials[i]`; a material past the end
+    /// reads nothing.
+    pub materials: Vec<MaterialMaps>,
+}
+
+impl Maps {
+    /// What material `material` reads.
+    #[inline]
+    pub fn of(&self, material: u32) -> MaterialMaps {
+        self.materials
+            .get(material as usize)
+            .copied()
+            .unwrap_or_default()
+    }
+
+    /// The image `index` names, if there is one.
+    #[inline]
+    pub fn image(&self, index: Option<u32>) -> Option<&Texture> {
+        index.and_then(|i| self.images.get(i as usize))
+    }
+
+    /// Adds `image` and returns its index.
+    pub fn push(&mut self, image: Texture) -> u32 {
+        self.images.push(image);
+        self.images.len() as u32 - 1
+    }
+
+    /// The maps of material `material`, to change (grown to hold it).
+    pub fn of_mut(&mut self, material: usize) -> &mut MaterialMaps {
+        if self.materials.len() <= material {
+            self.materials.resize(material + 1, MaterialMaps::default());
+        }
+        &mut self.materials[material]
+    }
+
+    /// Whether any material of `mesh`, which has (u, v) coordinates, reads what
+    /// `pick` chooses.
+    pub fn any(&self, mesh: &Mesh, pick: impl Fn(&MaterialMaps) -> Option<u32>) -> bool {
+        !mesh.uvs.is_empty()
+            && (0..mesh.materials.len() as u32).any(|m| self.image(pick(&self.of(m))).is_some())
+    }
+}
+
+/// A mesh and what its materials read beyond their colours: what the stages
+/// beyond the handout draw.
+#[derive(Clone, Copy, Debug)]
+pub struct Model<'a> {
+    pub mesh: &'a Mesh,
+    pub maps: &'a Maps,
+}
+
+/// No maps at all: the handout's materials.
+pub static NO_MAPS: Maps = Maps {
+    images: Vec::new(),
+    materials: Vec::new(),
+};
+
+impl<'a> From<&'a Mesh> for Model<'a> {
+    /// The handout's: colours alone.
+    fn from(mesh: &'a Mesh) -> Self {
+        Model {
+            mesh,
+            maps: &NO_MAPS,
+        }
     }
 }
 
