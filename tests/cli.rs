@@ -48,24 +48,80 @@ fn every_subcommand_explains_itself() {
         assert!(o.status.success(), "{cmd}");
         let text = String::from_utf8(o.stdout).unwrap();
         assert!(text.contains(words), "{cmd} --help: {text}");
-        if ["depth", "vertex-light", "pixel-light"].contains(&cmd) {
-            assert!(text.contains("--affine"), "{cmd} --help");
+        let interpolates = ["vertex-light", "pixel-light", "view"].contains(&cmd);
+        assert_eq!(text.contains("--affine"), interpolates, "{cmd} --help");
+        let draws = !["rows", "report", "stress"].contains(&cmd);
+        for opt in ["--size", "--focal", "--camera", "--yaw", "--pitch"] {
+            assert_eq!(text.contains(opt), draws, "{cmd} --help and {opt}");
         }
-        if !["rows", "report", "stress"].contains(&cmd) {
-            for opt in [
-                "--size",
-                "--focal",
-                "--camera",
-                "--yaw",
-                "--pitch",
-                "--light",
-                "--light-power",
-                "--indirect",
-            ] {
-                assert!(text.contains(opt), "{cmd} --help lacks {opt}");
-            }
-        }
+        // The light only where something is lit.
+        let lit = [
+            "vertex-light",
+            "pixel-light",
+            "all",
+            "raytrace",
+            "view",
+            "report",
+            "check",
+        ];
+        assert_eq!(
+            text.contains("--light-power"),
+            lit.contains(&cmd),
+            "{cmd} --help and --light-power"
+        );
     }
+}
+
+/// Each stage lists only what it reads: points 14 options and --help, no light,
+/// no lines, no interpolation; each later section adds its own.
+#[test]
+fn each_stage_lists_only_the_options_it_reads() {
+    let options = |cmd: &str| -> Vec<String> {
+        let o = rasterlab(&[cmd, "--help"]);
+        String::from_utf8(o.stdout)
+            .unwrap()
+            .lines()
+            .filter(|l| l.starts_with("  -") || l.starts_with("      --"))
+            .map(|l| {
+                l.split_whitespace()
+                    .find(|w| w.starts_with("--"))
+                    .unwrap()
+                    .to_string()
+            })
+            .collect()
+    };
+    let points = options("points");
+    assert_eq!(points.len(), 15, "{points:?}");
+    let added = |cmd: &str, before: &[String]| -> Vec<String> {
+        let mut new: Vec<String> = options(cmd)
+            .into_iter()
+            .filter(|o| !before.contains(o))
+            .collect();
+        new.sort();
+        new
+    };
+    assert_eq!(added("wireframe", &points), ["--lines"]);
+    let filled = options("filled");
+    assert_eq!(added("depth", &filled), ["--buffer", "--dof"]);
+    let depth = options("depth");
+    assert_eq!(
+        added("vertex-light", &depth),
+        [
+            "--affine",
+            "--filter",
+            "--indirect",
+            "--interpolation",
+            "--light",
+            "--light-power",
+            "--pcf",
+            "--shadows",
+            "--texture"
+        ]
+    );
+    assert_eq!(
+        added("pixel-light", &options("vertex-light")),
+        ["--normal-map", "--parallax"]
+    );
 }
 
 #[test]
@@ -96,36 +152,40 @@ fn bad_arguments_are_one_line_usage_errors() {
 }
 
 #[test]
-fn options_a_stage_would_ignore_are_refused_with_the_reason() {
+fn options_a_stage_does_not_take_are_refused_with_where_they_belong() {
     for (args, needle) in [
         (
             &["points", "--light", "0,0,0"][..],
-            "--light does nothing for points",
+            "unexpected argument '--light' found; tip: --light is an option of vertex-light, pixel-light, all, raytrace, report, view, animate vertex-light, animate pixel-light, check",
         ),
         (
             &["depth", "--light-power", "2"][..],
-            "--light-power does nothing for depth",
+            "tip: --light-power is an option of vertex-light, pixel-light",
         ),
         (
             &["filled", "--affine"][..],
-            "--affine does nothing for filled",
+            "tip: --affine is an option of vertex-light, pixel-light, view, animate vertex-light, animate pixel-light",
         ),
-        (
-            &["depth", "--affine"][..],
-            "--affine does nothing for depth",
-        ),
-        (
-            &["wireframe", "--interpolation", "perspective"][..],
-            "--interpolation does nothing for wireframe",
-        ),
-        (
-            &["raytrace", "--affine"][..],
-            "--affine does nothing for raytrace",
-        ),
+        (&["depth", "--texture", "checker"][..], "tip: --texture is an option of"),
+        (&["raytrace", "--affine"][..], "unexpected argument '--affine'"),
         (
             &["raytrace", "--flat", "--indirect", "0.2"][..],
-            "--indirect does nothing for raytrace --flat",
+            "the argument '--flat' cannot be used with '--indirect <N>'",
         ),
+        (
+            &["filled", "--lines", "bresenham", "--raster", "edge"][..],
+            "--lines does nothing for filled --raster edge",
+        ),
+        (
+            &["pixel-light", "--parallax"][..],
+            "the following required arguments were not provided: --normal-map",
+        ),
+        // Typos: the option meant, or the subcommand.
+        (
+            &["depth", "--afine"][..],
+            "tip: did you mean --affine? an option of vertex-light, pixel-light",
+        ),
+        (&["pixl-light"][..], "'pixel-light'"),
     ] {
         usage_error(args, needle);
     }

@@ -60,7 +60,12 @@ fn dof_is_refused_without_a_depth_buffer_and_checked() {
     };
     let o = run(&["filled", "--dof", "3,0.1", "-o", "-"]);
     assert_eq!(o.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("--dof does nothing for filled"));
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(e.contains("unexpected argument '--dof'"), "{e}");
+    assert!(
+        e.contains("tip: --dof is an option of depth, vertex-light, pixel-light"),
+        "{e}"
+    );
     for bad in ["0,0.1", "3,-1", "3", "x,1", "inf,1"] {
         let o = run(&["pixel-light", "--dof", bad, "-o", "-"]);
         assert_eq!(o.status.code(), Some(2), "--dof {bad}");

@@ -219,7 +219,11 @@ fn texture_options_are_refused_where_nothing_reads_them() {
         .unwrap();
     assert_eq!(o.status.code(), Some(2));
     let e = String::from_utf8_lossy(&o.stderr);
-    assert!(e.contains("--texture does nothing for depth"), "{e}");
+    assert!(e.contains("unexpected argument '--texture'"), "{e}");
+    assert!(
+        e.contains("tip: --texture is an option of vertex-light, pixel-light, raytrace"),
+        "{e}"
+    );
     let o = Command::new(env!("CARGO_BIN_EXE_rasterlab"))
         .args(["pixel-light", "--texture", "/no/such/image.png", "-o", "-"])
         .output()

@@ -3,6 +3,7 @@
 //! Figure 1, and the viewer.
 
 pub mod check;
+pub mod cli;
 pub mod controls;
 pub mod explain;
 pub mod image_io;

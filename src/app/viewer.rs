@@ -72,10 +72,7 @@ impl Summary {
         if self.scene != "cornell" {
             command += &format!(" --scene {}", self.scene);
         }
-        let lit = matches!(
-            self.view.stage,
-            StageName::VertexLight | StageName::PixelLight
-        );
+        let lit = self.view.stage.is_lit();
         if let (Some(texture), true) = (&self.texture, lit) {
             command += &format!(" --texture {texture}");
         }
@@ -167,7 +164,7 @@ pub fn command_for(view: Figure, s: &Settings) -> String {
         s.pitch,
     );
     // Only the lit stages take the light (the others refuse options they ignore).
-    if matches!(view.stage, StageName::VertexLight | StageName::PixelLight) {
+    if view.stage.is_lit() {
         command += &format!(
             " --light {} --light-power {} --indirect {}",
             v(s.light),
@@ -175,7 +172,7 @@ pub fn command_for(view: Figure, s: &Settings) -> String {
             s.indirect
         );
     }
-    if let (Some(dof), true) = (s.dof, view.stage >= StageName::Depth) {
+    if let (Some(dof), true) = (s.dof, view.stage.has_depth()) {
         command += &format!(" --dof {},{}", dof.focus, dof.aperture);
     }
     if !s.clip {

@@ -56,10 +56,24 @@ impl StageName {
         StageName::ALL.into_iter().find(|s| s.name() == name)
     }
 
-    /// Whether the stage interpolates anything whose interpolation can be affine or
-    /// perspective-correct (1/z alone is always interpolated as it is).
-    pub fn interpolates(self) -> bool {
+    /// Whether the stage draws light (section 6): vertex-light and pixel-light.
+    pub fn is_lit(self) -> bool {
         matches!(self, StageName::VertexLight | StageName::PixelLight)
+    }
+
+    /// Whether the stage tests depth (section 5 on): depth and the lit stages.
+    pub fn has_depth(self) -> bool {
+        matches!(
+            self,
+            StageName::Depth | StageName::VertexLight | StageName::PixelLight
+        )
+    }
+
+    /// Whether the stage interpolates anything whose interpolation can be affine or
+    /// perspective-correct (1/z alone is always interpolated as it is): the lit
+    /// stages' light or position.
+    pub fn interpolates(self) -> bool {
+        self.is_lit()
     }
 
     /// The handout's choice for this stage: section 6.1 interpolates the
@@ -429,7 +443,7 @@ impl Figure {
 
     /// With shadows, for the lit stages; others draw no light to shadow.
     pub fn with_shadows(self, shadows: Shadows) -> Self {
-        let lit = matches!(self.stage, StageName::VertexLight | StageName::PixelLight);
+        let lit = self.stage.is_lit();
         Figure {
             shadows: if lit { shadows } else { Shadows::None },
             ..self

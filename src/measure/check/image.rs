@@ -117,12 +117,12 @@ impl Hypothesis {
     }
 
     pub fn lit(self) -> bool {
-        self.stage.interpolates()
+        self.stage.is_lit()
     }
 
     /// Whether the stage fills polygons with a depth test by default.
     fn tests_depth(self) -> bool {
-        self.stage >= StageName::Depth
+        self.stage.has_depth()
     }
 
     /// The variants of this hypothesis' geometry and interpolation, by name.
