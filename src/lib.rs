@@ -6,7 +6,8 @@
 //!   clipping, rasterizers, interpolation, stages, light, render targets). It
 //!   depends on glam alone.
 //! - [`extensions`]: what goes beyond the handout on top of the pipeline, without
-//!   changing it: depth of field so far.
+//!   changing it: smooth normals, textures, normal maps and parallax, shadows,
+//!   depth of field; each a stage, a light or a post-process.
 //! - [`scene`]: what builds meshes: the handout's Cornell box (and its
 //!   subdivisions), procedural scenes (a sphere, a floor grid) and OBJ models read
 //!   with tobj, chosen by a `--scene` spec; it also frames a scene other than the

@@ -92,14 +92,23 @@ impl Screen {
     }
 }
 
+/// The triangle being drawn, as the pixel shader sees it: the handout's
+/// `currentNormal` and `currentReflectance`.
+#[derive(Clone, Copy)]
+struct Surface {
+    normal: Vec3,
+    reflectance: Vec3,
+}
+
 pub fn draw(perspective_correct: bool) -> Screen {
     let triangles = load_test_model();
     let mut screen = Screen::new();
     for triangle in &triangles {
-        let current_normal = triangle.normal;
-        let current_reflectance = triangle.color;
+        let surface = Surface {
+            normal: triangle.normal,
+            reflectance: triangle.color,
+        };
         let vertices = [triangle.v0, triangle.v1, triangle.v2].map(|position| Vertex { position });
-        let surface = (current_normal, current_reflectance);
         draw_polygon(&mut screen, &vertices, surface, perspective_correct);
     }
     screen
@@ -143,7 +152,7 @@ fn direct_light(position: Vec3, normal: Vec3) -> Vec3 {
 
 /// `PixelShader`: draw the pixel only if it is nearer than what is there, that
 /// is if its 1/z is larger.
-fn pixel_shader(screen: &mut Screen, p: Pixel, surface: (Vec3, Vec3), perspective_correct: bool) {
+fn pixel_shader(screen: &mut Screen, p: Pixel, surface: Surface, perspective_correct: bool) {
     if !(0..SCREEN_WIDTH).contains(&p.x) || !(0..SCREEN_HEIGHT).contains(&p.y) {
         return;
     }
@@ -155,9 +164,8 @@ fn pixel_shader(screen: &mut Screen, p: Pixel, surface: (Vec3, Vec3), perspectiv
         } else {
             p.pos3d
         };
-        let (current_normal, current_reflectance) = surface;
-        let illumination = current_reflectance
-            * (direct_light(position, current_normal) + INDIRECT_LIGHT_POWER_PER_AREA);
+        let illumination = surface.reflectance
+            * (direct_light(position, surface.normal) + INDIRECT_LIGHT_POWER_PER_AREA);
         screen.put_pixel(p.x, p.y, illumination);
     }
 }
@@ -231,7 +239,7 @@ fn draw_polygon_rows(
     screen: &mut Screen,
     left: &[Pixel],
     right: &[Pixel],
-    surface: (Vec3, Vec3),
+    surface: Surface,
     perspective_correct: bool,
 ) {
     for (l, r) in left.iter().zip(right) {
@@ -251,7 +259,7 @@ fn draw_polygon_rows(
 fn draw_polygon(
     screen: &mut Screen,
     vertices: &[Vertex],
-    surface: (Vec3, Vec3),
+    surface: Surface,
     perspective_correct: bool,
 ) {
     let vertex_pixels: Vec<Pixel> = vertices

@@ -1,6 +1,6 @@
-//! A small log-log chart drawn with our own core: lines from
-//! [`draw_line`], text from an 8x8 bitmap font (font8x8), written
-//! as PNG like every figure. Enough for `report`'s error-against-time plot.
+//! A canvas drawn with our own core for `explain`'s magnified pixel grids:
+//! lines from [`draw_line`], text from an 8x8 bitmap font (font8x8), written as
+//! PNG like every figure. (The report's error-against-time plot is plotters'.)
 
 use crate::pipeline::interpolate::Pixel;
 use crate::pipeline::raster::rows::draw_line;
@@ -57,32 +57,6 @@ impl Canvas {
         }
     }
 
-    /// A dashed one-pixel line.
-    pub fn dashed(&mut self, a: (i32, i32), b: (i32, i32), color: Rgb) {
-        let n = (b.0 - a.0).abs().max((b.1 - a.1).abs()).max(1);
-        for i in (0..n).step_by(12) {
-            let t0 = i as f32 / n as f32;
-            let t1 = ((i + 6).min(n)) as f32 / n as f32;
-            let at = |t: f32| {
-                (
-                    a.0 + ((b.0 - a.0) as f32 * t) as i32,
-                    a.1 + ((b.1 - a.1) as f32 * t) as i32,
-                )
-            };
-            self.line(at(t0), at(t1), color, 1);
-        }
-    }
-
-    /// A filled square marker of side `2 r + 1` with a black outline.
-    pub fn marker(&mut self, c: (i32, i32), r: i32, color: Rgb) {
-        for y in -r - 1..=r + 1 {
-            for x in -r - 1..=r + 1 {
-                let edge = x.abs() == r + 1 || y.abs() == r + 1;
-                self.put(c.0 + x, c.1 + y, if edge { BLACK } else { color });
-            }
-        }
-    }
-
     /// Text with its top-left corner at `at`, each font pixel `scale` pixels wide.
     pub fn text(&mut self, at: (i32, i32), text: &str, scale: i32, color: Rgb) {
         for (i, ch) in text.chars().enumerate() {
@@ -115,101 +89,9 @@ impl Canvas {
     }
 }
 
-/// Maps data to pixels on log axes inside a plot area.
-#[derive(Clone, Copy, Debug)]
-pub struct LogLog {
-    /// log10 of the x range.
-    pub x: (f64, f64),
-    /// log10 of the y range.
-    pub y: (f64, f64),
-    /// Plot area: left, top, right, bottom in pixels.
-    pub area: (i32, i32, i32, i32),
-}
-
-impl LogLog {
-    /// Axes that cover `xs` and `ys` (positive values), widened to whole decades.
-    pub fn covering(xs: &[f64], ys: &[f64], area: (i32, i32, i32, i32)) -> Self {
-        let range = |v: &[f64]| {
-            let lo = v
-                .iter()
-                .copied()
-                .fold(f64::INFINITY, f64::min)
-                .log10()
-                .floor();
-            let hi = v
-                .iter()
-                .copied()
-                .fold(f64::NEG_INFINITY, f64::max)
-                .log10()
-                .ceil();
-            (lo, if hi > lo { hi } else { lo + 1.0 })
-        };
-        LogLog {
-            x: range(xs),
-            y: range(ys),
-            area,
-        }
-    }
-
-    pub fn map(&self, x: f64, y: f64) -> (i32, i32) {
-        let (l, t, r, b) = self.area;
-        let fx = (x.log10() - self.x.0) / (self.x.1 - self.x.0);
-        let fy = (y.log10() - self.y.0) / (self.y.1 - self.y.0);
-        (
-            l + (fx * (r - l) as f64).round() as i32,
-            b - (fy * (b - t) as f64).round() as i32,
-        )
-    }
-
-    /// Frame, decade grid lines and their labels (`1`, `10`, `0.1`, ...).
-    pub fn draw_axes(&self, c: &mut Canvas, x_title: &str, y_title: &str) {
-        let (l, t, r, b) = self.area;
-        let label = |e: f64| {
-            let v = 10f64.powf(e);
-            if e >= 0.0 {
-                format!("{v:.0}")
-            } else {
-                format!("{v:.prec$}", prec = (-e) as usize)
-            }
-        };
-        for e in (self.x.0 as i32)..=(self.x.1 as i32) {
-            let (px, _) = self.map(10f64.powi(e), 10f64.powf(self.y.0));
-            c.line((px, t), (px, b), GREY, 1);
-            let s = label(e as f64);
-            c.text((px - Canvas::text_width(&s, 2) / 2, b + 8), &s, 2, BLACK);
-        }
-        for e in (self.y.0 as i32)..=(self.y.1 as i32) {
-            let (_, py) = self.map(10f64.powf(self.x.0), 10f64.powi(e));
-            c.line((l, py), (r, py), GREY, 1);
-            let s = label(e as f64);
-            c.text((l - 8 - Canvas::text_width(&s, 2), py - 8), &s, 2, BLACK);
-        }
-        c.line((l, t), (r, t), BLACK, 1);
-        c.line((l, b), (r, b), BLACK, 1);
-        c.line((l, t), (l, b), BLACK, 1);
-        c.line((r, t), (r, b), BLACK, 1);
-        c.text(
-            ((l + r) / 2 - Canvas::text_width(x_title, 2) / 2, b + 34),
-            x_title,
-            2,
-            BLACK,
-        );
-        c.text((l, t - 34), y_title, 2, BLACK);
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn decades_map_to_the_plot_area() {
-        let p = LogLog::covering(&[2.0, 300.0], &[0.05, 4.0], (100, 50, 700, 450));
-        assert_eq!((p.x, p.y), ((0.0, 3.0), (-2.0, 1.0)));
-        assert_eq!(p.map(1.0, 0.01), (100, 450));
-        assert_eq!(p.map(1000.0, 10.0), (700, 50));
-        assert_eq!(p.map(10.0, 0.1), (300, 317));
-    }
 
     #[test]
     fn text_sets_the_glyphs_pixels() {

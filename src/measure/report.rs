@@ -12,7 +12,6 @@ use crate::measure::metrics::{
     differing_fraction, edge_pixels_within_one_pixel, image_error, interior_mask,
     points_within_one_pixel, ImageError,
 };
-use crate::measure::plot::{Canvas, LogLog, BLACK, DARK};
 use crate::measure::raytrace::{raytrace, Options, Shading, Traced};
 use crate::measure::timing::{time_runs, Timing};
 use crate::pipeline::{Camera, Frame, Light, Mesh};
@@ -663,136 +662,198 @@ fn overlaps(a: Box2, b: Box2) -> bool {
     a.0 < b.2 && b.0 < a.2 && a.1 < b.3 && b.1 < a.3
 }
 
+/// The font every plot's words are drawn in: DejaVu Sans, bundled, so that the
+/// picture is the same on every machine.
+fn plot_font() {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    ONCE.call_once(|| {
+        let bytes: &'static [u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
+        // A bundled, known font: registering it cannot fail but by a broken build.
+        let _ =
+            plotters::style::register_font("sans-serif", plotters::style::FontStyle::Normal, bytes);
+    });
+}
+
+/// A colour of [`SERIES`] for plotters.
+fn rgb(c: u32) -> plotters::style::RGBColor {
+    plotters::style::RGBColor((c >> 16) as u8, (c >> 8) as u8, c as u8)
+}
+
 /// `error-vs-time.png`: every measured stage and the ray tracer as a point at its
-/// median time and its error (log scales); an error of exactly 0 sits in a band
-/// below a break in the error axis. Lines join each lit stage's points as the mesh
-/// gets denser. Labels (the image size) go where they overlap no other label,
-/// marker or line, or are left out.
+/// median time and its error (log scales, by plotters); an error of exactly 0
+/// sits on a dashed line below the error axis's smallest value. Lines join each
+/// lit stage's points as the mesh gets denser. Labels (the image size) go inside
+/// the plotting area where they overlap no other label, marker or line, or are
+/// left out, so they never reach the axes' words.
 pub fn plot(rows: &[Row], plan: &Plan) -> Frame {
+    use plotters::prelude::*;
+    plot_font();
     let points: Vec<(&Row, f64)> = rows
         .iter()
         .filter_map(|r| plot_error(r).map(|e| (r, e)))
         .collect();
     let xs: Vec<f64> = points.iter().map(|(r, _)| r.ms().max(1e-3)).collect();
     let positive: Vec<f64> = points.iter().map(|p| p.1).filter(|&e| e > 0.0).collect();
-    let (w, h) = (1700, 1000);
-    let mut c = Canvas::new(w, h, 0x00ff_ffff);
-    let axes = LogLog::covering(&xs, &positive, (140, 130, w as i32 - 520, h as i32 - 170));
-    c.text(
-        (140, 20),
-        "Error against draw time: each shortcut's price",
-        3,
-        BLACK,
-    );
-    axes.draw_axes(
-        &mut c,
-        "median draw time, ms (log)",
-        "error (log): 8-bit RMSE against the ray tracer; points, wireframe: % placed > 1 px off",
-    );
-    // The zero band, below a break in the error axis.
-    let (l, _, r, b) = axes.area;
-    let zero_y = b + 70;
-    c.dashed((l, zero_y), (r, zero_y), DARK);
-    c.text(
-        (l - 8 - Canvas::text_width("0", 2), zero_y - 8),
-        "0",
-        2,
-        BLACK,
-    );
-    c.text((l - 30, b + 30), "//", 2, BLACK);
-    let at = |r: &Row, e: f64| -> (i32, i32) {
-        let (x, y) = axes.map(r.ms().max(1e-3), if e > 0.0 { e } else { 1.0 });
-        (x, if e > 0.0 { y } else { zero_y })
+    let range = |v: &[f64], pad: f64| {
+        let lo = v.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = v.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        match lo.is_finite() && hi.is_finite() {
+            true => (lo / pad, hi * pad),
+            false => (0.1, 10.0),
+        }
     };
-    let color = |stage: &str| SERIES.iter().find(|(s, _)| *s == stage).map(|s| s.1);
-    let mut obstacles: Vec<Box2> = vec![(l, zero_y - 1, r, zero_y + 2)];
-    // Mesh-density curves first, so the points sit on top.
-    for (stage, col) in SERIES {
-        let curve: Vec<&(&Row, f64)> = points
-            .iter()
-            .filter(|(r, _)| r.stage == stage && r.size == plan.k_size)
-            .collect();
-        for pair in curve.windows(2) {
-            let (a, b) = (at(pair[0].0, pair[0].1), at(pair[1].0, pair[1].1));
-            c.line(a, b, col, 3);
-            for t in 0..=10 {
-                let p = (a.0 + (b.0 - a.0) * t / 10, a.1 + (b.1 - a.1) * t / 10);
-                obstacles.push((p.0 - 3, p.1 - 3, p.0 + 3, p.1 + 3));
+    let (x_lo, x_hi) = range(&xs, 1.6);
+    let (e_lo, e_hi) = range(&positive, 1.6);
+    // The zero line, a decade below the smallest error, and a break above it.
+    let zero = e_lo / 10.0;
+    let (w, h) = (1700u32, 1000u32);
+    let mut pixels = vec![0u8; (w * h * 3) as usize];
+    {
+        let root = BitMapBackend::with_buffer(&mut pixels, (w, h)).into_drawing_area();
+        let _ = root.fill(&WHITE);
+        let (left, legend) = root.split_horizontally(w - 470);
+        let built = ChartBuilder::on(&left)
+            .caption(
+                "Error against draw time: each shortcut's price",
+                ("sans-serif", 34),
+            )
+            .margin(24)
+            .x_label_area_size(70)
+            .y_label_area_size(110)
+            .build_cartesian_2d((x_lo..x_hi).log_scale(), (zero / 2.0..e_hi).log_scale());
+        let Ok(mut chart) = built else {
+            return Frame::new(w, h);
+        };
+        let _ = chart
+            .configure_mesh()
+            .x_desc("median draw time, ms (log)")
+            .y_desc(
+                "error (log): 8-bit RMSE against the ray tracer; points, wireframe: % placed > 1 px off",
+            )
+            .axis_desc_style(("sans-serif", 20))
+            .label_style(("sans-serif", 18))
+            .y_label_formatter(&|v| match (*v >= e_lo / 1.01, *v >= 1.0) {
+                (false, _) => String::new(),
+                (true, true) => format!("{v:.0}"),
+                (true, false) => format!("{v:.2}"),
+            })
+            .x_label_formatter(&|v| format!("{v}"))
+            .draw();
+        let at = |r: &Row, e: f64| (r.ms().max(1e-3), if e > 0.0 { e } else { zero });
+        let dashed =
+            DashedLineSeries::new([(x_lo, zero), (x_hi, zero)], 8, 6, BLACK.mix(0.6).into());
+        let _ = chart.draw_series(dashed);
+        let _ = chart.draw_series(std::iter::once(Text::new(
+            "0 (exact)",
+            (x_lo * 1.05, zero * 1.25),
+            ("sans-serif", 18).into_font(),
+        )));
+        let (px, py) = chart.plotting_area().get_pixel_range();
+        let inside: Box2 = (px.start, py.start, px.end, py.end);
+        let mut obstacles: Vec<Box2> = Vec::new();
+        // Mesh-density curves first, so the points sit on top.
+        for (stage, col) in SERIES {
+            let curve: Vec<(f64, f64)> = points
+                .iter()
+                .filter(|(r, _)| r.stage == stage && r.size == plan.k_size)
+                .map(|&(r, e)| at(r, e))
+                .collect();
+            for pair in curve.windows(2) {
+                let (a, b) = (chart.backend_coord(&pair[0]), chart.backend_coord(&pair[1]));
+                for t in 0..=10 {
+                    let p = (a.0 + (b.0 - a.0) * t / 10, a.1 + (b.1 - a.1) * t / 10);
+                    obstacles.push((p.0 - 3, p.1 - 3, p.0 + 3, p.1 + 3));
+                }
+            }
+            let _ = chart.draw_series(LineSeries::new(curve, rgb(col).stroke_width(3)));
+        }
+        let mut marks = Vec::new();
+        for &(row, e) in &points {
+            let Some(&(_, col)) = SERIES.iter().find(|(s, _)| *s == row.stage) else {
+                continue;
+            };
+            let r = if row.k == 1 { 6 } else { 3 };
+            let square = EmptyElement::at(at(row, e))
+                + Rectangle::new([(-r, -r), (r, r)], rgb(col).filled());
+            let _ = chart.draw_series(std::iter::once(square));
+            let p = chart.backend_coord(&at(row, e));
+            obstacles.push((p.0 - r - 1, p.1 - r - 1, p.0 + r + 2, p.1 + r + 2));
+            let label = match row.k {
+                1 => row.size.to_string(),
+                k => format!("k={k}"),
+            };
+            marks.push((p, label, col));
+        }
+        let label_font = ("sans-serif", 16).into_font();
+        let mut placed: Vec<Box2> = Vec::new();
+        for (p, label, col) in marks {
+            let (tw, th) = root
+                .estimate_text_size(&label, &label_font.clone().into())
+                .map_or((40, 16), |(a, b)| (a as i32, b as i32));
+            let candidates = [
+                (10, -th / 2),
+                (-tw - 10, -th / 2),
+                (-tw / 2, -th - 10),
+                (-tw / 2, 10),
+                (10, -th - 8),
+                (10, 8),
+                (-tw - 10, -th - 8),
+                (-tw - 10, 8),
+            ];
+            let free = candidates
+                .iter()
+                .map(|&(dx, dy)| (p.0 + dx, p.1 + dy))
+                .find(|&(x, y)| {
+                    let bx = (x - 2, y - 2, x + tw + 2, y + th + 2);
+                    bx.0 >= inside.0
+                        && bx.2 <= inside.2
+                        && bx.1 >= inside.1
+                        && bx.3 <= inside.3
+                        && !placed.iter().chain(&obstacles).any(|&o| overlaps(o, bx))
+                });
+            if let Some((x, y)) = free {
+                placed.push((x - 2, y - 2, x + tw + 2, y + th + 2));
+                let style = label_font.clone().color(&rgb(col));
+                let _ = root.draw(&Text::new(label, (x, y), style));
             }
         }
-    }
-    let mut marks = Vec::new();
-    for &(row, e) in &points {
-        let Some(col) = color(&row.stage) else {
-            continue;
-        };
-        let p = at(row, e);
-        let r = if row.k == 1 { 6 } else { 3 };
-        c.marker(p, r, col);
-        obstacles.push((p.0 - r - 1, p.1 - r - 1, p.0 + r + 2, p.1 + r + 2));
-        let label = if row.k == 1 {
-            row.size.to_string()
-        } else {
-            format!("k={}", row.k)
-        };
-        marks.push((p, label, col));
-    }
-    let mut placed: Vec<Box2> = Vec::new();
-    let inside = (l, axes.area.1, r + 300, zero_y + 30);
-    for (p, label, col) in marks {
-        let (tw, th) = (Canvas::text_width(&label, 2), 16);
-        let candidates = [
-            (10, -th / 2),
-            (-tw - 10, -th / 2),
-            (-tw / 2, -th - 10),
-            (-tw / 2, 10),
-            (10, -th - 8),
-            (10, 8),
-            (-tw - 10, -th - 8),
-            (-tw - 10, 8),
-        ];
-        let free = candidates
-            .iter()
-            .map(|&(dx, dy)| (p.0 + dx, p.1 + dy))
-            .find(|&(x, y)| {
-                let bx = (x - 2, y - 2, x + tw + 2, y + th + 2);
-                bx.0 >= inside.0
-                    && bx.2 <= inside.2
-                    && bx.1 >= inside.1
-                    && bx.3 <= inside.3
-                    && !placed.iter().chain(&obstacles).any(|&o| overlaps(o, bx))
-            });
-        if let Some((x, y)) = free {
-            placed.push((x - 2, y - 2, x + tw + 2, y + th + 2));
-            c.text((x, y), &label, 2, col);
+        // Legend.
+        let mut ly = 130;
+        for (stage, col) in SERIES {
+            let _ = legend.draw(&Rectangle::new(
+                [(8, ly + 2), (20, ly + 14)],
+                rgb(col).filled(),
+            ));
+            let name = stage.replace(" --interpolation ", ", ");
+            let _ = legend.draw(&Text::new(name, (30, ly), ("sans-serif", 18).into_font()));
+            ly += 30;
         }
+        ly += 12;
+        let note = format!("{s}x{s}, every triangle", s = plan.k_size);
+        for line in [
+            "big squares: the plain box,",
+            "labelled by image size",
+            "lines, small squares:",
+            &note,
+            "split k x k",
+            "",
+            "filled, depth: RMSE against",
+            "the ray-cast flat colours",
+            "raytrace --shadows: what",
+            "shadows change (no stage",
+            "draws them)",
+        ] {
+            let style = ("sans-serif", 17).into_font().color(&RGBColor(80, 80, 80));
+            let _ = legend.draw(&Text::new(line, (0, ly), style));
+            ly += 24;
+        }
+        let _ = root.present();
     }
-    // Legend.
-    let (lx, mut ly) = (w as i32 - 470, 130);
-    for (stage, col) in SERIES {
-        c.marker((lx + 8, ly + 8), 6, col);
-        let name = stage.replace(" --interpolation ", ", ");
-        c.text((lx + 24, ly), &name, 2, BLACK);
-        ly += 30;
+    let mut frame = Frame::new(w, h);
+    for (c, p) in frame.color.iter_mut().zip(pixels.chunks_exact(3)) {
+        *c = (p[0] as u32) << 16 | (p[1] as u32) << 8 | p[2] as u32;
     }
-    ly += 12;
-    for line in [
-        "big squares: the plain box,",
-        "labelled by image size",
-        "lines, small squares:",
-        &format!("{s}x{s}, every triangle", s = plan.k_size),
-        "split k x k",
-        "",
-        "filled, depth: RMSE against",
-        "the ray-cast flat colours",
-        "raytrace --shadows: what",
-        "shadows change (no stage",
-        "draws them)",
-    ] {
-        c.text((lx, ly), line, 2, DARK);
-        ly += 22;
-    }
-    c.frame
+    frame
 }
 
 /// One option beyond the handout, as the report measures it.
