@@ -3,9 +3,9 @@
 //! walking the edges reproduces it.
 
 use super::report::json_string;
-use super::walk::{polygon_rows, Walk};
+use super::walk::Walk;
 use crate::pipeline::interpolate::Pixel;
-use crate::pipeline::raster::rows::Rows;
+use crate::pipeline::raster::rows::{compute_polygon_rows_by, Rows};
 use crate::pipeline::raster::Bounds;
 use std::fmt::Write as _;
 
@@ -49,7 +49,7 @@ impl RowsVariant {
     pub fn rows(self, vertices: &[(i32, i32)]) -> Vec<Row> {
         let pixels: Vec<_> = vertices.iter().map(|&(x, y)| Pixel::at(x, y)).collect();
         let mut rows = Rows::new();
-        polygon_rows(self.walk, &pixels, &Bounds::unbounded(), &mut rows);
+        compute_polygon_rows_by(&self.walk, &pixels, &Bounds::unbounded(), &mut rows);
         let end = self.exclusive_end as i32;
         rows.left
             .iter()

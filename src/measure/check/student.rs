@@ -9,12 +9,11 @@
 //! the variant in use is instead set for the current thread while one frame is
 //! drawn ([`with_geometry`]); drawing happens on that thread only.
 
-use super::walk::polygon_rows;
 use super::walk::Walk;
 use crate::pipeline::clip::{ScreenVertex, MAX_CORNERS};
 use crate::pipeline::interpolate::{Nothing, Pixel, Varying};
 use crate::pipeline::mesh::Vertex;
-use crate::pipeline::raster::rows::{draw_polygon_rows, Rows};
+use crate::pipeline::raster::rows::{compute_polygon_rows_by, draw_polygon_rows, Rows};
 use crate::pipeline::raster::{Rasterizer, Viewport};
 use crate::pipeline::stage::{Primitive, Stage, Surface};
 use crate::pipeline::Light;
@@ -132,7 +131,7 @@ impl Rasterizer for StudentRaster {
         for (p, &c) in pixels.iter_mut().zip(corners) {
             *p = place(c, viewport, g);
         }
-        polygon_rows(g.walk, &pixels[..corners.len()], &viewport.bounds, rows);
+        compute_polygon_rows_by(&g.walk, &pixels[..corners.len()], &viewport.bounds, rows);
         draw_polygon_rows(rows, &viewport.bounds, plot);
     }
 }

@@ -2,12 +2,11 @@
 //! rounding instead of truncating, an edge sampled at |dy| + 1 points instead of
 //! max(|dx|, |dy|) + 1, steps of (b - a) / N instead of (b - a) / (N - 1). The
 //! handout's walk is the core's `Steps`; these are the same running sum with one
-//! of its choices made differently, and [`polygon_rows`] is `ComputePolygonRows`
-//! walking the edges with any of them.
+//! of its choices made differently. Each is a `LineWalk`, so the core's one
+//! `ComputePolygonRows` (`compute_polygon_rows_by`) walks the edges with any of them.
 
 use crate::pipeline::interpolate::{Pixel, Varying};
-use crate::pipeline::raster::rows::Rows;
-use crate::pipeline::raster::Bounds;
+use crate::pipeline::raster::bresenham::LineWalk;
 
 /// How an edge or line is walked. The default is the handout's.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -97,42 +96,12 @@ impl Walk {
     }
 }
 
-/// The handout's `ComputePolygonRows` (section 4) with the edges walked by `walk`:
-/// each row's leftmost and rightmost pixel over all the edges' pixels, rows
-/// outside `bounds.y` left out. With the default walk it is the core's
-/// `compute_polygon_rows` (a test holds them equal); it is written here, not as an
-/// option of the core, so that no student's variant is part of the pipeline.
-pub fn polygon_rows<V: Varying>(
-    walk: Walk,
-    corners: &[Pixel<V>],
-    bounds: &Bounds,
-    rows: &mut Rows<V>,
-) {
-    let ys = corners.iter().map(|p| p.y);
-    rows.top = ys.clone().min().unwrap_or(0).max(bounds.y.start);
-    let bottom = ys.max().unwrap_or(-1).min(bounds.y.end.saturating_sub(1));
-    // Each row starts empty: left very large, right very small.
-    let unset = |x: i32, y: i32| Pixel {
-        x,
-        y,
-        ..corners.first().copied().unwrap_or_default()
-    };
-    let (left, right) = (&mut rows.left, &mut rows.right);
-    left.clear();
-    right.clear();
-    left.extend((rows.top..=bottom).map(|y| unset(i32::MAX, y)));
-    right.extend((rows.top..=bottom).map(|y| unset(i32::MIN, y)));
-    let n = corners.len();
-    for p in (0..n).flat_map(|i| walk.pixels(corners[i], corners[(i + 1) % n])) {
-        let row = p.y as i64 - rows.top as i64;
-        if let Some(row) = usize::try_from(row).ok().filter(|&r| r < left.len()) {
-            if p.x < left[row].x {
-                left[row] = p;
-            }
-            if p.x > right[row].x {
-                right[row] = p;
-            }
-        }
+/// A student's walk plugs into the core's `ComputePolygonRows`
+/// (`raster::rows::compute_polygon_rows_by`): no student's variant is part of the
+/// pipeline, and there is one `ComputePolygonRows`.
+impl LineWalk for Walk {
+    fn walk<V: Varying>(&self, a: Pixel<V>, b: Pixel<V>, f: impl FnMut(Pixel<V>)) {
+        self.pixels(a, b).for_each(f)
     }
 }
 
@@ -159,7 +128,8 @@ mod tests {
 
     #[test]
     fn the_default_walks_rows_are_the_cores() {
-        use crate::pipeline::raster::rows::compute_polygon_rows;
+        use crate::pipeline::raster::rows::{compute_polygon_rows, compute_polygon_rows_by, Rows};
+        use crate::pipeline::raster::Bounds;
         let polygons: [&[(i32, i32)]; 4] = [
             &[(10, 5), (5, 10), (15, 15)],
             &[(3, 2), (40, 9), (17, 31)],
@@ -171,7 +141,7 @@ mod tests {
             for bounds in [Bounds::unbounded(), Bounds { x: 0..40, y: 0..25 }] {
                 let (mut core, mut ours) = (Rows::new(), Rows::new());
                 compute_polygon_rows(&v, &bounds, &mut core);
-                polygon_rows(Walk::default(), &v, &bounds, &mut ours);
+                compute_polygon_rows_by(&Walk::default(), &v, &bounds, &mut ours);
                 assert_eq!(core.top, ours.top);
                 assert_eq!((core.left, core.right), (ours.left, ours.right));
             }

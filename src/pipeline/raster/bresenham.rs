@@ -19,6 +19,20 @@ pub enum Lines {
     Bresenham,
 }
 
+/// A way of walking the pixels of a line, first to last: the handout's
+/// `Interpolate`, Bresenham's, or (in `rasterlab check`) a student's. The rows
+/// rasterizer's `ComputePolygonRows` takes any.
+pub trait LineWalk {
+    fn walk<V: Varying>(&self, a: Pixel<V>, b: Pixel<V>, f: impl FnMut(Pixel<V>));
+}
+
+impl LineWalk for Lines {
+    #[inline]
+    fn walk<V: Varying>(&self, a: Pixel<V>, b: Pixel<V>, f: impl FnMut(Pixel<V>)) {
+        walk_line(*self, a, b, f)
+    }
+}
+
 /// Every pixel of the line from `a` to `b`, first to last, walked the way `lines`
 /// says. The choice is made once per line; each loop is its own code.
 #[inline]

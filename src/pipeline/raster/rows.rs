@@ -2,7 +2,7 @@
 //! `Interpolate` (`DrawLineSDL`, section 3), polygons by `ComputePolygonRows` and
 //! `DrawPolygonRows` (section 4).
 
-use super::bresenham::{walk_line, Lines};
+use super::bresenham::{walk_line, LineWalk, Lines};
 use super::{Bounds, Rasterizer, Viewport};
 use crate::pipeline::clip::ScreenVertex;
 use crate::pipeline::interpolate::{Pixel, Varying, RUNNING_SUM_LIMIT};
@@ -55,7 +55,7 @@ impl Rasterizer for RowRaster {
             *p = to_pixel(c, viewport);
         }
         let corners = &pixels[..corners.len()];
-        compute_polygon_rows_by(viewport.lines, corners, &viewport.bounds, rows);
+        compute_polygon_rows_by(&viewport.lines, corners, &viewport.bounds, rows);
         draw_polygon_rows(rows, &viewport.bounds, plot);
     }
 }
@@ -124,12 +124,12 @@ pub fn compute_polygon_rows<V: Varying>(
     bounds: &Bounds,
     rows: &mut Rows<V>,
 ) {
-    compute_polygon_rows_by(Lines::Interpolate, vertices, bounds, rows)
+    compute_polygon_rows_by(&Lines::Interpolate, vertices, bounds, rows)
 }
 
-/// [`compute_polygon_rows`], with the edges walked the way `lines` says.
+/// [`compute_polygon_rows`], with the edges walked by `lines`.
 pub fn compute_polygon_rows_by<V: Varying>(
-    lines: Lines,
+    lines: &impl LineWalk,
     vertices: &[Pixel<V>],
     bounds: &Bounds,
     rows: &mut Rows<V>,
@@ -162,7 +162,7 @@ pub fn compute_polygon_rows_by<V: Varying>(
     let count = vertices.len();
     for i in 0..count {
         let (a, b) = (vertices[i], vertices[(i + 1) % count]);
-        walk_line(lines, a, b, |p| {
+        lines.walk(a, b, |p| {
             let row = p.y as i64 - top as i64;
             if row < 0 || row >= n as i64 {
                 return;
