@@ -8,7 +8,7 @@ use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use rasterlab::app::Settings;
 use rasterlab::measure::figure::Inputs;
 use rasterlab::measure::figure::Raster;
-use rasterlab::pipeline::raster::bresenham::walk_line;
+use rasterlab::pipeline::raster::lines::walk_line;
 use rasterlab::pipeline::raster::Lines;
 use rasterlab::scene::{cornell_box, subdivide};
 use rasterlab::Pixel;

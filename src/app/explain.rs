@@ -16,8 +16,8 @@
 use crate::measure::plot::{Canvas, Rgb, BLACK, DARK, GREY};
 use crate::pipeline::clip::ScreenVertex;
 use crate::pipeline::interpolate::{line_pixels, Pixel, Steps};
-use crate::pipeline::raster::bresenham::walk_line;
 use crate::pipeline::raster::edge::SUBPIXEL;
+use crate::pipeline::raster::lines::walk_line;
 use crate::pipeline::raster::rows::{compute_polygon_rows, draw_polygon_rows, Rows};
 use crate::pipeline::raster::{Bounds, EdgeRaster, Lines, Rasterizer, RowRaster, Viewport};
 use crate::pipeline::Frame;

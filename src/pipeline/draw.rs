@@ -174,16 +174,12 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
             "a stage with a depth test needs a depth buffer"
         );
         target.clear();
-        let mut screen = Screen::new(camera, target, self.lines);
+        let mut view = View::new(camera, target, self.lines);
         // Taken out of `self` while the faces are drawn, and put back for the next frame.
         let mut camera_space = std::mem::take(&mut self.camera_space);
         camera_space.clear();
-        camera_space.extend(
-            mesh.positions
-                .iter()
-                .map(|&p| screen.projection.to_camera(p)),
-        );
-        let fit = screen.fit(&camera_space);
+        camera_space.extend(mesh.positions.iter().map(|&p| view.projection.to_camera(p)));
+        let fit = view.fit(&camera_space);
         self.stats = Stats {
             triangles: mesh.faces.len() as u64,
             near_plane_skipped: fit.in_front && camera.near.is_some(),
@@ -191,15 +187,13 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
             ..Stats::default()
         };
         if fit.in_front {
-            screen.near = None; // nothing to cut: no test per triangle
+            view.near = None; // nothing to cut: no test per triangle
         }
-        screen.view_tests = !fit.inside;
+        view.view_tests = !fit.inside;
         // Chosen once per frame, so that no loop over faces or pixels tests it.
         match self.batch_shading {
-            true => self.draw_faces::<S, true>(stage, mesh, camera, &screen, &camera_space, target),
-            false => {
-                self.draw_faces::<S, false>(stage, mesh, camera, &screen, &camera_space, target)
-            }
+            true => self.draw_faces::<S, true>(stage, mesh, camera, &view, &camera_space, target),
+            false => self.draw_faces::<S, false>(stage, mesh, camera, &view, &camera_space, target),
         }
         self.camera_space = camera_space;
     }
@@ -211,7 +205,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         stage: &S,
         mesh: &Mesh,
         camera: &Camera,
-        screen: &Screen,
+        view: &View,
         camera_space: &[Vec3],
         target: &mut Target,
     ) {
@@ -242,14 +236,14 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
             match S::PRIMITIVE {
                 Primitive::Points => {
                     self.stats.drawn += 1;
-                    self.draw_points(stage, screen, &corners, &surface, target)
+                    self.draw_points(stage, view, &corners, &surface, target)
                 }
                 Primitive::Lines => {
                     self.stats.drawn += 1;
-                    self.draw_edges(stage, screen, &corners, &surface, target)
+                    self.draw_edges(stage, view, &corners, &surface, target)
                 }
                 Primitive::Polygons => {
-                    self.draw_polygon::<S, BATCH>(stage, screen, &corners, &surface, target)
+                    self.draw_polygon::<S, BATCH>(stage, view, &corners, &surface, target)
                 }
             }
         }
@@ -260,14 +254,14 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
     fn draw_polygon<S: Stage<Varying = V>, const BATCH: bool>(
         &mut self,
         stage: &S,
-        screen: &Screen,
+        view: &View,
         corners: &[CameraVertex<V>; 3],
         surface: &Surface,
         target: &mut Target,
     ) {
         let mut polygon = Polygon::from_slice(corners);
         let mut clipped = false;
-        if let Some(n) = screen.near {
+        if let Some(n) = view.near {
             if corners.iter().any(|c| !in_front(c, n)) {
                 polygon = clip_near(&polygon, n);
                 clipped = true;
@@ -275,18 +269,18 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         }
         let mut projected = Polygon::default();
         for &c in polygon.as_slice() {
-            match project::<_, I>(&screen.projection, c) {
+            match project::<_, I>(&view.projection, c) {
                 Some(s) => projected.push(s),
                 None => return, // a corner on the camera plane (only without clipping)
             }
         }
-        if screen.view_tests {
-            if projected.is_empty() || off_screen(projected.as_slice(), &screen.rect) {
+        if view.view_tests {
+            if projected.is_empty() || off_screen(projected.as_slice(), &view.rect) {
                 self.stats.outside += 1;
                 return;
             }
-            if !projected.as_slice().iter().all(|s| screen.band.contains(s)) {
-                projected = clip_rect(&projected, &screen.band);
+            if !projected.as_slice().iter().all(|s| view.band.contains(s)) {
+                projected = clip_rect(&projected, &view.band);
                 clipped = true;
             }
         }
@@ -305,7 +299,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         R::polygon(
             &mut self.scratch,
             projected.as_slice(),
-            &screen.viewport,
+            &view.viewport,
             |p| {
                 let i = (p.y as usize - first_row) * width + p.x as usize;
                 if !depth_test::<S>(depth_buffer, i, p.zinv) {
@@ -339,22 +333,21 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
     fn draw_points<S: Stage<Varying = V>>(
         &mut self,
         stage: &S,
-        screen: &Screen,
+        view: &View,
         corners: &[CameraVertex<V>; 3],
         surface: &Surface,
         target: &mut Target,
     ) {
         for &c in corners {
-            if screen.near.is_some_and(|n| !in_front(&c, n)) {
+            if view.near.is_some_and(|n| !in_front(&c, n)) {
                 continue;
             }
-            let Some(s) =
-                project::<_, I>(&screen.projection, c).filter(|s| screen.band.contains(s))
+            let Some(s) = project::<_, I>(&view.projection, c).filter(|s| view.band.contains(s))
             else {
                 continue;
             };
             let stats = &mut self.stats;
-            R::point(s, &screen.viewport, |p| {
+            R::point(s, &view.viewport, |p| {
                 stats.count(shade_pixel::<S, I>(stage, p, surface, target))
             });
         }
@@ -365,30 +358,30 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
     fn draw_edges<S: Stage<Varying = V>>(
         &mut self,
         stage: &S,
-        screen: &Screen,
+        view: &View,
         corners: &[CameraVertex<V>; 3],
         surface: &Surface,
         target: &mut Target,
     ) {
         for i in 0..3 {
             let (a, b) = (corners[i], corners[(i + 1) % 3]);
-            let near_cut = match screen.near {
+            let near_cut = match view.near {
                 Some(n) => clip_segment_near(a, b, n),
                 None => Some((a, b)),
             };
             let Some((a, b)) = near_cut else { continue };
-            let project = |c| project::<_, I>(&screen.projection, c);
+            let project = |c| project::<_, I>(&view.projection, c);
             let (Some(a), Some(b)) = (project(a), project(b)) else {
                 continue;
             };
-            let banded = if screen.band.contains(&a) && screen.band.contains(&b) {
+            let banded = if view.band.contains(&a) && view.band.contains(&b) {
                 Some((a, b))
             } else {
-                clip_segment_rect(a, b, &screen.band)
+                clip_segment_rect(a, b, &view.band)
             };
             let Some((a, b)) = banded else { continue };
             let stats = &mut self.stats;
-            R::line(a, b, &screen.viewport, |p| {
+            R::line(a, b, &view.viewport, |p| {
                 stats.count(shade_pixel::<S, I>(stage, p, surface, target))
             });
         }
@@ -478,7 +471,7 @@ fn off_screen<V>(corners: &[ScreenVertex<V>], screen: &Rect) -> bool {
 /// Where one frame is drawn: the camera's projection and near plane, the screen
 /// and the guard band around it (in screen-centred coordinates), and the pixels
 /// the target lets us write.
-struct Screen {
+struct View {
     projection: Projection,
     near: Option<f32>,
     rect: Rect,
@@ -496,11 +489,11 @@ struct Fit {
     inside: bool,
 }
 
-impl Screen {
+impl View {
     fn new(camera: &Camera, target: &Target, lines: Lines) -> Self {
         let rect = camera.screen_rect();
         let g = camera.width.max(camera.height) as f32 * GUARD_BAND;
-        Screen {
+        View {
             projection: camera.projection(),
             near: camera.near,
             rect,
@@ -525,7 +518,7 @@ impl Screen {
     }
 }
 
-impl Screen {
+impl View {
     /// Where a mesh lies, from its vertices in camera space: all in front of the
     /// near plane, and all projecting inside the screen. A triangle lies within its
     /// corners' projections (all in front of the camera), so then none needs a cut

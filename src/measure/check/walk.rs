@@ -6,7 +6,7 @@
 //! `ComputePolygonRows` (`compute_polygon_rows_by`) walks the edges with any of them.
 
 use crate::pipeline::interpolate::{Pixel, Varying};
-use crate::pipeline::raster::bresenham::LineWalk;
+use crate::pipeline::raster::LineWalk;
 
 /// How an edge or line is walked. The default is the handout's.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]

@@ -7,12 +7,12 @@
 //! handout's (sections 3 and 4); [`EdgeRaster`] is exact (edge functions, pixel
 //! centres, the top-left rule).
 
-pub mod bresenham;
 pub mod edge;
+pub mod lines;
 pub mod rows;
 
-pub use bresenham::Lines;
 pub use edge::EdgeRaster;
+pub use lines::{LineWalk, Lines};
 pub use rows::RowRaster;
 
 use super::clip::ScreenVertex;

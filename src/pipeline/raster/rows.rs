@@ -2,7 +2,7 @@
 //! `Interpolate` (`DrawLineSDL`, section 3), polygons by `ComputePolygonRows` and
 //! `DrawPolygonRows` (section 4).
 
-use super::bresenham::{walk_line, LineWalk, Lines};
+use super::lines::{walk_line, LineWalk, Lines};
 use super::{Bounds, Rasterizer, Viewport};
 use crate::pipeline::clip::ScreenVertex;
 use crate::pipeline::interpolate::{Pixel, Varying, RUNNING_SUM_LIMIT};

@@ -1,5 +1,6 @@
-//! Bresenham's line algorithm (`--lines bresenham`), the alternative one student
-//! report put in place of the handout's `Interpolate` for walking lines: the same
+//! How a line's pixels are walked ([`LineWalk`]): the handout's `Interpolate`
+//! (the running sum of `Steps`, truncated), or Bresenham's line algorithm
+//! (`--lines bresenham`), the alternative one student report put in its place: the same
 //! `max(|dx|, |dy|) + 1` pixels per line, but each the pixel nearest the true
 //! line, found with integer sums alone, where `Interpolate` truncates a running
 //! float sum (and so leans toward smaller x and y by up to a pixel).
