@@ -366,18 +366,8 @@ pub trait StageOptions {
 impl StageOptions for PointsOptions {
     fn parts(&self) -> Parts<'_> {
         Parts {
-            scene: &self.scene,
-            camera: &self.camera,
             raster: Some(&self.raster),
-            lines: None,
-            light: None,
-            interpolation: None,
-            texture: None,
-            shadows: false,
-            pcf: false,
-            dof: None,
-            normal_map: None,
-            parallax: false,
+            ..Parts::new(&self.scene, &self.camera)
         }
     }
 }
@@ -423,7 +413,25 @@ impl StageOptions for PixelLightOptions {
     }
 }
 
-impl Parts<'_> {
+impl<'a> Parts<'a> {
+    /// The scene and the camera, and no other group: the handout's for the rest.
+    pub fn new(scene: &'a SceneGroup, camera: &'a CameraGroup) -> Self {
+        Parts {
+            scene,
+            camera,
+            raster: None,
+            lines: None,
+            light: None,
+            interpolation: None,
+            texture: None,
+            shadows: false,
+            pcf: false,
+            dof: None,
+            normal_map: None,
+            parallax: false,
+        }
+    }
+
     /// The figure `stage` is drawn as: the handout's, changed by what was given.
     pub fn figure(&self, stage: StageName) -> Result<Figure, Failure> {
         let raster = match self.raster.map(|r| r.raster) {
@@ -649,18 +657,8 @@ pub struct AllArgs {
 impl AllArgs {
     pub fn parts(&self) -> Parts<'_> {
         Parts {
-            scene: &self.scene,
-            camera: &self.camera,
-            raster: None,
-            lines: None,
             light: Some(&self.light),
-            interpolation: None,
-            texture: None,
-            shadows: false,
-            pcf: false,
-            dof: None,
-            normal_map: None,
-            parallax: false,
+            ..Parts::new(&self.scene, &self.camera)
         }
     }
 }
@@ -697,18 +695,11 @@ pub struct RaytraceArgs {
 impl RaytraceArgs {
     pub fn parts(&self) -> Parts<'_> {
         Parts {
-            scene: &self.scene,
-            camera: &self.camera,
-            raster: None,
-            lines: None,
             light: Some(&self.light),
-            interpolation: None,
             texture: Some(&self.texture),
             shadows: self.shadows,
-            pcf: false,
-            dof: None,
             normal_map: self.normal_map.normal_map.as_deref(),
-            parallax: false,
+            ..Parts::new(&self.scene, &self.camera)
         }
     }
 }

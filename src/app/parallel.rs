@@ -3,9 +3,9 @@
 //! band draws exactly its part of the whole image, so the result is the same, byte
 //! for byte, for any number of threads.
 
-use crate::extensions::normal_map::{tangent_frames, TangentFrame};
+use crate::extensions::normal_map::TangentFrame;
 use crate::extensions::texture::Model;
-use crate::measure::figure::{Attributes, Figure, Inputs, Render};
+use crate::measure::figure::{Figure, Inputs, Render};
 use crate::pipeline::draw::Stats;
 use crate::pipeline::{Camera, Frame, Mesh};
 
@@ -45,10 +45,7 @@ impl Parallel {
             pipelines: (0..threads).map(|_| figure.pipeline_for(model)).collect(),
             pool,
             stats: Stats::default(),
-            frames: match Attributes::of(model).normal_map {
-                true => tangent_frames(model.mesh),
-                false => Vec::new(),
-            },
+            frames: figure.tangent_frames(model),
         })
     }
 

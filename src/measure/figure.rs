@@ -2,7 +2,7 @@
 //! the one place that turns a choice made at run time into a pipeline type, and
 //! the one that knows which stages beyond the handout a mesh's maps call for.
 
-use crate::extensions::normal_map::{NormalMappedPixelLight, TangentFrame};
+use crate::extensions::normal_map::{tangent_frames, NormalMappedPixelLight, TangentFrame};
 use crate::extensions::shadow::{ShadowMap, Shadowed, Shadows, SHADOW_MAP_SIZE};
 use crate::extensions::smooth::SmoothPixelLight;
 use crate::extensions::texture::{Filter, Maps, Model, NO_MAPS};
@@ -552,6 +552,17 @@ impl Figure {
                 batch_shading,
             },
         )
+    }
+
+    /// The faces' tangent frames this figure of `model` reads ([`Inputs::frames`]):
+    /// every face's where it draws a normal map, none otherwise.
+    pub fn tangent_frames<'a>(self, model: impl Into<Model<'a>>) -> Vec<TangentFrame> {
+        let model = model.into();
+        let mapped = self.stage == StageName::PixelLight && Attributes::of(model).normal_map;
+        match mapped {
+            true => tangent_frames(model.mesh),
+            false => Vec::new(),
+        }
     }
 
     /// Draws this figure of `mesh`, lit by `light`, into a new frame: the

@@ -3,7 +3,6 @@
 //! an error-against-time plot.
 
 use crate::extensions::depth_of_field::DepthOfField;
-use crate::extensions::normal_map::tangent_frames;
 use crate::extensions::shadow::Shadows;
 use crate::measure::figure::Inputs;
 use crate::measure::figure::{Figure, StageName};
@@ -956,7 +955,7 @@ pub fn measure_options(
         let mesh = &case.scene.mesh;
         let mut pipeline = case.figure.pipeline_for(&case.scene);
         let mut frame = Frame::default();
-        let frames = tangent_frames(mesh);
+        let frames = case.figure.tangent_frames(&case.scene);
         let mut draw = |frame: &mut Frame| {
             let shadow = case.figure.shadow_map(mesh, &light, near);
             let inputs = Inputs {

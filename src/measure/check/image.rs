@@ -224,6 +224,14 @@ fn draw<S: Stage, I: Interpolation>(stage: &S, mesh: &Mesh, camera: &Camera) -> 
     frame
 }
 
+/// [`draw`] with the per-pixel struct interpolated affinely or perspective-correctly.
+fn draw_as<S: Stage>(stage: &S, affine: bool, mesh: &Mesh, camera: &Camera) -> Frame {
+    match affine {
+        true => draw::<_, Affine>(stage, mesh, camera),
+        false => draw::<_, Perspective>(stage, mesh, camera),
+    }
+}
+
 /// The light with power 1 and no indirect light: what the lit passes draw with.
 fn unit_light(position: Vec3) -> Light {
     Light {
@@ -235,34 +243,14 @@ fn unit_light(position: Vec3) -> Light {
 
 /// The direct light per unit power at each pixel, as `h` interpolates it.
 pub(super) fn direct_pass(h: Hypothesis, mesh: &Mesh, camera: &Camera, light: Vec3) -> Vec<f32> {
-    let u = unit_light(light);
     let depth = h.geometry.depth != DepthMode::None;
     let frame = with_geometry(h.geometry, || {
-        match (h.stage == StageName::VertexLight, depth, h.affine) {
-            (true, true, true) => {
-                draw::<_, Affine>(&DirectPerVertex::<true> { light: u }, mesh, camera)
-            }
-            (true, true, false) => {
-                draw::<_, Perspective>(&DirectPerVertex::<true> { light: u }, mesh, camera)
-            }
-            (true, false, true) => {
-                draw::<_, Affine>(&DirectPerVertex::<false> { light: u }, mesh, camera)
-            }
-            (true, false, false) => {
-                draw::<_, Perspective>(&DirectPerVertex::<false> { light: u }, mesh, camera)
-            }
-            (false, true, true) => {
-                draw::<_, Affine>(&DirectPerPixel::<true> { light: u }, mesh, camera)
-            }
-            (false, true, false) => {
-                draw::<_, Perspective>(&DirectPerPixel::<true> { light: u }, mesh, camera)
-            }
-            (false, false, true) => {
-                draw::<_, Affine>(&DirectPerPixel::<false> { light: u }, mesh, camera)
-            }
-            (false, false, false) => {
-                draw::<_, Perspective>(&DirectPerPixel::<false> { light: u }, mesh, camera)
-            }
+        let light = unit_light(light);
+        match (h.stage == StageName::VertexLight, depth) {
+            (true, true) => draw_as(&DirectPerVertex::<true> { light }, h.affine, mesh, camera),
+            (true, false) => draw_as(&DirectPerVertex::<false> { light }, h.affine, mesh, camera),
+            (false, true) => draw_as(&DirectPerPixel::<true> { light }, h.affine, mesh, camera),
+            (false, false) => draw_as(&DirectPerPixel::<false> { light }, h.affine, mesh, camera),
         }
     });
     frame.color.iter().map(|&c| decode(c)).collect()
