@@ -111,15 +111,55 @@ impl Pixel<Nothing> {
 /// are the handout's to the bit.
 pub const RUNNING_SUM_LIMIT: usize = 4096;
 
-/// The values from `a` to `b` in `n` steps, computed exactly as the handout's
-/// `Interpolate`: `step = (b - a) / max(n - 1, 1)` in f32, a running sum
-/// `current += step`, and each position truncated toward zero, as C++'s
-/// float-to-int conversion does. It yields without storing, so rows need no buffer.
-/// Spans longer than [`RUNNING_SUM_LIMIT`] use the direct form instead.
-#[derive(Clone, Debug)]
-pub struct Steps<V> {
+/// The handout's running sum: `current += step` once per pixel, in f32, for the
+/// position, 1/z and the varying together. [`Steps`] walks lines and edges with it
+/// and `DrawPolygonRows` walks rows with it.
+#[derive(Clone, Copy, Debug)]
+pub struct RunningSum<V> {
     current: Sum<V>,
     step: Sum<V>,
+}
+
+impl<V: Varying> RunningSum<V> {
+    /// Starting at `a`, with the step `(b - a) / d`.
+    #[inline]
+    pub fn new(a: &Pixel<V>, b: &Pixel<V>, d: f32) -> Self {
+        let (start, end) = (Sum::of(a), Sum::of(b));
+        RunningSum {
+            current: start,
+            step: end.minus(&start).over(d),
+        }
+    }
+
+    /// The current value, its position placed on a pixel by `place`.
+    #[inline]
+    pub fn value(&self, place: impl Fn(f32) -> i32) -> Pixel<V> {
+        let c = &self.current;
+        Pixel {
+            x: place(c.xy.x),
+            y: place(c.xy.y),
+            zinv: c.zinv,
+            varying: c.varying,
+        }
+    }
+
+    #[inline]
+    pub fn advance(&mut self) {
+        let c = &mut self.current;
+        c.xy += self.step.xy;
+        c.zinv += self.step.zinv;
+        c.varying = c.varying + self.step.varying;
+    }
+}
+
+/// The values from `a` to `b` in `n` steps, computed exactly as the handout's
+/// `Interpolate`: `step = (b - a) / max(n - 1, 1)` in f32, the [`RunningSum`], and
+/// each position truncated toward zero, as C++'s float-to-int conversion does. It
+/// yields without storing, so rows need no buffer. Spans longer than
+/// [`RUNNING_SUM_LIMIT`] use the direct form instead.
+#[derive(Clone, Debug)]
+pub struct Steps<V> {
+    sum: RunningSum<V>,
     /// For the direct form: the start, the whole change, and the last step's index.
     start: Sum<V>,
     span: Sum<V>,
@@ -137,6 +177,7 @@ struct Sum<V> {
 }
 
 impl<V: Varying> Sum<V> {
+    #[inline]
     fn of(p: &Pixel<V>) -> Self {
         Sum {
             xy: Vec2::new(p.x as f32, p.y as f32),
@@ -144,29 +185,75 @@ impl<V: Varying> Sum<V> {
             varying: p.varying,
         }
     }
+
+    #[inline]
+    fn minus(&self, o: &Sum<V>) -> Self {
+        Sum {
+            xy: self.xy - o.xy,
+            zinv: self.zinv - o.zinv,
+            varying: self.varying - o.varying,
+        }
+    }
+
+    #[inline]
+    fn over(&self, d: f32) -> Self {
+        Sum {
+            xy: self.xy / d,
+            zinv: self.zinv / d,
+            varying: self.varying / d,
+        }
+    }
 }
 
 impl<V: Varying> Steps<V> {
     pub fn new(a: Pixel<V>, b: Pixel<V>, n: usize) -> Self {
-        let d = (n.max(2) - 1) as f32;
-        let (start, end) = (Sum::of(&a), Sum::of(&b));
-        let span = Sum {
-            xy: end.xy - start.xy,
-            zinv: end.zinv - start.zinv,
-            varying: end.varying - start.varying,
-        };
+        Steps::with_divisor(a, b, n, (n.max(2) - 1) as f32)
+    }
+
+    /// `n` values from `a` by steps of `(b - a) / d`: the handout's `d` is
+    /// `n - 1`, so the last value is `b`; a student's `d = n` stops a step short.
+    pub fn with_divisor(a: Pixel<V>, b: Pixel<V>, n: usize, d: f32) -> Self {
+        let start = Sum::of(&a);
         Steps {
-            current: start,
-            step: Sum {
-                xy: span.xy / d,
-                zinv: span.zinv / d,
-                varying: span.varying / d,
-            },
+            sum: RunningSum::new(&a, &b, d),
             start,
-            span,
+            span: Sum::of(&b).minus(&start),
             last: d,
             i: 0,
             n,
+        }
+    }
+
+    /// The next value, its position placed on a pixel by `place` (the handout
+    /// truncates; `rasterlab check` also tries a student's rounding).
+    #[inline]
+    pub fn next_placed(&mut self, place: impl Fn(f32) -> i32) -> Option<Pixel<V>> {
+        if self.i >= self.n {
+            return None;
+        }
+        if self.n > RUNNING_SUM_LIMIT {
+            let t = self.i as f32 / self.last;
+            let c = &mut self.sum.current;
+            c.xy = self.start.xy + self.span.xy * t;
+            c.zinv = self.start.zinv + self.span.zinv * t;
+            c.varying = self.start.varying + self.span.varying * t;
+        }
+        let p = self.sum.value(place);
+        self.sum.advance();
+        self.i += 1;
+        Some(p)
+    }
+
+    /// Passes over the values before the `i`-th, still adding their steps, so
+    /// that what follows is what walking them would have given.
+    pub fn skip_to(&mut self, i: usize) {
+        let i = i.min(self.n);
+        if self.n > RUNNING_SUM_LIMIT {
+            self.i = self.i.max(i);
+        }
+        while self.i < i {
+            self.sum.advance();
+            self.i += 1;
         }
     }
 }
@@ -174,29 +261,11 @@ impl<V: Varying> Steps<V> {
 impl<V: Varying> Iterator for Steps<V> {
     type Item = Pixel<V>;
 
+    /// The next value, each position truncated toward zero as C++'s float-to-int
+    /// conversion does.
     #[inline]
     fn next(&mut self) -> Option<Pixel<V>> {
-        if self.i >= self.n {
-            return None;
-        }
-        let c = &mut self.current;
-        if self.n > RUNNING_SUM_LIMIT {
-            let t = self.i as f32 / self.last;
-            c.xy = self.start.xy + self.span.xy * t;
-            c.zinv = self.start.zinv + self.span.zinv * t;
-            c.varying = self.start.varying + self.span.varying * t;
-        }
-        let p = Pixel {
-            x: c.xy.x as i32,
-            y: c.xy.y as i32,
-            zinv: c.zinv,
-            varying: c.varying,
-        };
-        c.xy += self.step.xy;
-        c.zinv += self.step.zinv;
-        c.varying = c.varying + self.step.varying;
-        self.i += 1;
-        Some(p)
+        self.next_placed(|v| v as i32)
     }
 
     fn size_hint(&self) -> (usize, Option<usize>) {

@@ -5,7 +5,7 @@
 //! of its choices made differently. Each is a `LineWalk`, so the core's one
 //! `ComputePolygonRows` (`compute_polygon_rows_by`) walks the edges with any of them.
 
-use crate::pipeline::interpolate::{Pixel, Varying};
+use crate::pipeline::interpolate::{Pixel, Steps, Varying};
 use crate::pipeline::raster::LineWalk;
 
 /// How an edge or line is walked. The default is the handout's.
@@ -29,10 +29,8 @@ impl Walk {
         n as usize + 1
     }
 
-    /// The pixels from `a` to `b` as this walk gives them, each with its 1/z and
-    /// varying carried by the same running sum. The sum runs however long the
-    /// edge, as a student's `Interpolate` does (the core computes spans of more
-    /// than 4096 steps directly instead; no edge of a screenshot's box is that long).
+    /// The pixels from `a` to `b` as this walk gives them: the core's running
+    /// sum (`Steps`) with this walk's count, step and placement.
     pub fn pixels<V: Varying>(self, a: Pixel<V>, b: Pixel<V>) -> impl Iterator<Item = Pixel<V>> {
         let n = self.samples(&a, &b);
         let d = if self.step_over_n {
@@ -40,30 +38,10 @@ impl Walk {
         } else {
             (n.max(2) - 1) as f32
         };
-        let step_x = (b.x - a.x) as f32 / d;
-        let step_y = (b.y - a.y) as f32 / d;
-        let step_zinv = (b.zinv - a.zinv) / d;
-        let step_varying = (b.varying - a.varying) / d;
-        let (mut x, mut y, mut zinv, mut varying) = (a.x as f32, a.y as f32, a.zinv, a.varying);
-        let place = move |v: f32| {
-            if self.rounding {
-                v.round() as i32
-            } else {
-                v as i32
-            }
-        };
-        (0..n).map(move |_| {
-            let p = Pixel {
-                x: place(x),
-                y: place(y),
-                zinv,
-                varying,
-            };
-            x += step_x;
-            y += step_y;
-            zinv += step_zinv;
-            varying = varying + step_varying;
-            p
+        let mut steps = Steps::with_divisor(a, b, n, d);
+        let rounding = self.rounding;
+        std::iter::from_fn(move || {
+            steps.next_placed(|v| if rounding { v.round() as i32 } else { v as i32 })
         })
     }
 
@@ -108,7 +86,7 @@ impl LineWalk for Walk {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::pipeline::interpolate::{line_pixels, Steps};
+    use crate::pipeline::interpolate::line_pixels;
 
     #[test]
     fn the_default_walk_is_the_cores() {

@@ -5,7 +5,7 @@
 use super::lines::{walk_line, LineWalk, Lines};
 use super::{Bounds, Rasterizer, Viewport};
 use crate::pipeline::clip::ScreenVertex;
-use crate::pipeline::interpolate::{Pixel, Varying, RUNNING_SUM_LIMIT};
+use crate::pipeline::interpolate::{Pixel, RunningSum, Steps, Varying, RUNNING_SUM_LIMIT};
 
 /// The handout's rows rasterizer (`--raster rows`, the default).
 #[derive(Clone, Copy, Debug, Default)]
@@ -178,14 +178,14 @@ pub fn compute_polygon_rows_by<V: Varying>(
     }
 }
 
-/// `DrawPolygonRows`: interpolate each row from its left to its right pixel and hand
-/// every pixel in the bounds to `plot`.
+/// `DrawPolygonRows`: interpolate each row from its left to its right pixel with
+/// `Interpolate` (`Steps`) and hand every pixel in the bounds to `plot`.
 ///
-/// Along a row x steps by `(n - 1) / (n - 1)`, exactly 1, so the running sum of x
-/// holds whole numbers and only 1/z and the varying need one; the result is bit
+/// Along a row x steps by `(n - 1) / (n - 1)`, exactly 1, so x is counted in
+/// integers and only 1/z and the varying need the running sum; the result is bit
 /// for bit the handout's `Interpolate` over the row. Pixels left of the bounds still
 /// add their step, so the sum is the same as if they were drawn. Rows longer than
-/// `RUNNING_SUM_LIMIT` compute each value directly (see `interpolate`).
+/// `RUNNING_SUM_LIMIT` compute each value directly (see `Steps`).
 pub fn draw_polygon_rows<V: Varying>(
     rows: &Rows<V>,
     bounds: &Bounds,
@@ -196,38 +196,31 @@ pub fn draw_polygon_rows<V: Varying>(
         if n <= 0 {
             continue;
         }
-        let (zinv_span, varying_span) = (r.zinv - l.zinv, r.varying - l.varying);
-        let d = (n - 1).max(1) as f32;
         let first = l.x.max(bounds.x.start);
         let last = r.x.min(bounds.x.end - 1);
+        if first > last {
+            continue;
+        }
+        let skipped = (first as i64 - l.x as i64) as usize;
         if n as usize > RUNNING_SUM_LIMIT {
-            // Too long for a running sum to stay accurate: each value directly.
-            for x in first..=last {
-                let t = (x as i64 - l.x as i64) as f32 / d;
-                plot(Pixel {
-                    x,
-                    y: l.y,
-                    zinv: l.zinv + zinv_span * t,
-                    varying: l.varying + varying_span * t,
-                });
+            let mut steps = Steps::new(*l, *r, n as usize);
+            steps.skip_to(skipped);
+            for (x, p) in (first..=last).zip(steps) {
+                plot(Pixel { x, ..p });
             }
             continue;
         }
-        let (zinv_step, varying_step) = (zinv_span / d, varying_span / d);
-        let (mut zinv, mut varying) = (l.zinv, l.varying);
-        for _ in l.x..first {
-            zinv += zinv_step;
-            varying = varying + varying_step;
+        let mut sum = RunningSum::new(l, r, (n - 1).max(1) as f32);
+        for _ in 0..skipped {
+            sum.advance();
         }
         for x in first..=last {
             plot(Pixel {
                 x,
                 y: l.y,
-                zinv,
-                varying,
+                ..sum.value(|v| v as i32)
             });
-            zinv += zinv_step;
-            varying = varying + varying_step;
+            sum.advance();
         }
     }
 }
@@ -270,6 +263,30 @@ mod tests {
             seen += 1;
         });
         assert_eq!(seen, 64, "the triangle covers the whole 8 x 8 screen");
+    }
+
+    #[test]
+    fn a_row_is_interpolate_over_the_row_even_where_it_is_cut() {
+        // One row from x = -7 to 12 with 1/z and a varying that do not divide
+        // evenly; cut at x = 0 it must give what the whole walk gives there.
+        let l = Pixel {
+            x: -7,
+            y: 3,
+            zinv: 0.3,
+            varying: 1.7f32,
+        };
+        let mut r = l;
+        (r.x, r.zinv, r.varying) = (12, 0.9, -2.2);
+        let whole: Vec<_> = Steps::new(l, r, 20).filter(|p| p.x >= 0).collect();
+        let rows = Rows {
+            top: 3,
+            left: vec![l],
+            right: vec![r],
+        };
+        let mut cut = Vec::new();
+        draw_polygon_rows(&rows, &screen(10, 10), |p| cut.push(p));
+        assert_eq!(cut, whole[..10]);
+        assert_eq!(cut[0].x, 0);
     }
 
     #[test]
