@@ -5,10 +5,10 @@
 //! follow from the throughput it is given.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use rasterlab::app::figure::Inputs;
+use rasterlab::app::figure::Raster;
 use rasterlab::app::Settings;
-use rasterlab::measure::figure::Inputs;
-use rasterlab::measure::figure::Raster;
-use rasterlab::pipeline::raster::lines::walk_line;
+use rasterlab::pipeline::raster::rows::walk_line;
 use rasterlab::pipeline::raster::Lines;
 use rasterlab::scene::{cornell_box, subdivide};
 use rasterlab::Pixel;

@@ -12,10 +12,11 @@
 //!   subdivisions), procedural scenes (a sphere, a floor grid) and OBJ models read
 //!   with tobj, chosen by a `--scene` spec; it also frames a scene other than the
 //!   box for the camera and the light.
-//! - [`measure`]: the ray-traced reference, error metrics, timing, `rasterlab
-//!   report`, `rasterlab stress` and `rasterlab check` (a student's screenshot or
-//!   rows printout explained).
-//! - [`app`]: the command line's work, image files, Figure 1 and the viewer.
+//! - [`measure`]: the ray-traced reference, error metrics, timing, the plot and
+//!   `rasterlab check` (a student's screenshot or rows printout explained).
+//! - [`app`]: the command line's work: [`Figure`], the one place that turns a
+//!   stage's name and options into a pipeline with its extensions, image files,
+//!   Figure 1, `rasterlab report` and `rasterlab stress`, and the viewer.
 //!
 //! `docs/handout-map.md` maps each handout function to the item that implements it.
 
@@ -25,6 +26,6 @@ pub mod measure;
 pub mod pipeline;
 pub mod scene;
 
-pub use measure::figure::{Figure, StageName};
-pub use pipeline::{interpolate, Camera, Frame, Light, Mesh, Pixel, Triangle};
+pub use app::figure::Figure;
+pub use pipeline::{interpolate, Camera, Frame, Light, Mesh, Pixel, StageName, Triangle};
 pub use scene::cornell_box;

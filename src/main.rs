@@ -152,7 +152,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
         }
         Command::Report(a) => {
             let scene = app::cli::load_scene(&a.scene)?;
-            let mut pose = rasterlab::measure::report::pose_for(&scene)?;
+            let mut pose = rasterlab::app::report::pose_for(&scene)?;
             pose.light = a.light.unwrap_or(pose.light);
             pose.light_power = a.light_power.unwrap_or(pose.light_power);
             wrote(app::report(&a.out, a.quick, &scene, &pose, |line| {

@@ -2,9 +2,9 @@
 //! triangle, row or pixel. A counting allocator watches a second frame of every
 //! figure, with both rasterizers, on the box and on a finer mesh.
 
+use rasterlab::app::figure::Inputs;
+use rasterlab::app::figure::Raster;
 use rasterlab::app::Settings;
-use rasterlab::measure::figure::Inputs;
-use rasterlab::measure::figure::Raster;
 use rasterlab::scene::{cornell_box, subdivide};
 use rasterlab::{Figure, Frame};
 use std::alloc::{GlobalAlloc, Layout, System};

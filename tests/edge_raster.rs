@@ -193,7 +193,7 @@ fn edge_depth_agrees_with_a_ray_cast_through_pixel_centres() {
     let (camera, light) = (s.camera(), s.light());
     let mesh = rasterlab::cornell_box();
     let edge = rasterlab::Figure::of(rasterlab::StageName::Depth)
-        .with_raster(rasterlab::measure::figure::Raster::Edge)
+        .with_raster(rasterlab::app::figure::Raster::Edge)
         .render(&mesh, &camera, light);
     let options = Options {
         shading: Shading::Flat,

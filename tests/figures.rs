@@ -245,10 +245,10 @@ fn committed_pictures_match_the_code() {
         &app::depth_buffer_picture(&depth),
     );
     // rasterlab report: the heat maps (deterministic, unlike its times)
-    let plan = rasterlab::measure::report::Plan::full();
+    let plan = rasterlab::app::report::Plan::full();
     let cornell = rasterlab::scene::parse_scene("cornell").unwrap();
-    let pose = rasterlab::measure::report::pose_for(&cornell).unwrap();
-    for (name, picture) in rasterlab::measure::report::heat_maps(&plan, &cornell, &pose) {
+    let pose = rasterlab::app::report::pose_for(&cornell).unwrap();
+    for (name, picture) in rasterlab::app::report::heat_maps(&plan, &cornell, &pose) {
         assert_picture(&docs().join("report").join(name), &picture);
     }
 }

@@ -2,9 +2,9 @@
 //! tangent frame; the ray tracer reads the same map.
 
 use glam::Vec3;
+use rasterlab::app::figure::Raster;
 use rasterlab::app::{self, Settings};
 use rasterlab::extensions::texture::Texture;
-use rasterlab::measure::figure::Raster;
 use rasterlab::measure::raytrace::{raytrace, Options};
 use rasterlab::pipeline::Frame;
 use rasterlab::scene::parse_scene;

@@ -1,10 +1,10 @@
 //! Drawing in bands on several threads gives the image of drawing on one, byte
 //! for byte, whatever the number of threads, the stage or the rasterizer.
 
+use rasterlab::app::figure::Inputs;
+use rasterlab::app::figure::Raster;
 use rasterlab::app::parallel::Parallel;
 use rasterlab::app::Settings;
-use rasterlab::measure::figure::Inputs;
-use rasterlab::measure::figure::Raster;
 use rasterlab::scene::parse_scene;
 use rasterlab::{Figure, Frame};
 

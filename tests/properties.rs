@@ -5,7 +5,7 @@
 
 use glam::Vec3;
 use proptest::prelude::*;
-use rasterlab::measure::figure::Inputs;
+use rasterlab::app::figure::Inputs;
 use rasterlab::pipeline::Target;
 use rasterlab::{Camera, Figure, Frame, Light, Mesh, StageName, Triangle};
 

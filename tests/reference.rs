@@ -2,10 +2,10 @@
 
 mod common;
 use common::temp_dir;
+use rasterlab::app::report::INTERIOR_MARGIN;
 use rasterlab::app::Settings;
 use rasterlab::measure::metrics::{image_error, interior_mask};
 use rasterlab::measure::raytrace::{raytrace, Options};
-use rasterlab::measure::report::INTERIOR_MARGIN;
 use rasterlab::{cornell_box, Figure, StageName};
 use std::process::Command;
 

@@ -445,8 +445,8 @@ fn framing_fills_the_view_and_scales_the_light() {
 /// pose: a model is otherwise framed by its bounding sphere).
 #[test]
 fn the_boxs_obj_renders_every_stage_as_the_built_in_box() {
+    use rasterlab::app::figure::Raster;
     use rasterlab::app::{self, Settings};
-    use rasterlab::measure::figure::Raster;
     use rasterlab::{cornell_box, Figure};
     let obj = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/models/cornell.obj");
     let loaded = rasterlab::scene::load_obj(&obj).unwrap();
@@ -535,8 +535,8 @@ fn a_model_is_framed_and_the_printed_pose_reproduces_it() {
 
 #[test]
 fn culling_back_faces_of_the_closed_box_changes_nothing_with_exact_coverage() {
+    use rasterlab::app::figure::Raster;
     use rasterlab::app::{self, Settings};
-    use rasterlab::measure::figure::Raster;
     use rasterlab::pipeline::draw::Cull;
     use rasterlab::{cornell_box, Figure, StageName};
     let (mesh, s) = (cornell_box(), Settings::default());
@@ -557,8 +557,8 @@ fn culling_back_faces_of_the_closed_box_changes_nothing_with_exact_coverage() {
 #[test]
 fn rows_draw_shared_edges_twice_and_edges_do_not() {
     use rasterlab::app::explain::pixels_drawn_twice;
+    use rasterlab::app::figure::Raster;
     use rasterlab::app::Settings;
-    use rasterlab::measure::figure::Raster;
     use rasterlab::{cornell_box, Figure, StageName};
     let (mesh, s) = (cornell_box(), Settings::default());
     let rows = pixels_drawn_twice(&mesh, &s, Raster::Rows);

@@ -1,9 +1,9 @@
 //! Shadows (#12): a cube shadow map from the point light, measured against the
 //! ray tracer's shadow rays.
 
+use rasterlab::app::figure::Raster;
 use rasterlab::app::{self, Settings};
 use rasterlab::extensions::shadow::Shadows;
-use rasterlab::measure::figure::Raster;
 use rasterlab::measure::raytrace::{raytrace, Options};
 use rasterlab::{cornell_box, Figure, Frame, StageName};
 

@@ -241,7 +241,7 @@ fn texture_options_are_refused_where_nothing_reads_them() {
 /// 1.5 pixels (15 406 pixels, measured). The untextured box differs on most walls.
 #[test]
 fn the_ray_tracer_reads_the_same_texture() {
-    use rasterlab::measure::figure::Raster;
+    use rasterlab::app::figure::Raster;
     use rasterlab::measure::raytrace::{raytrace, Options};
     let (mesh, s) = (checker_box(), Settings::default());
     let rows = render(Figure::of(StageName::PixelLight), &mesh, &s);

@@ -4,12 +4,13 @@
 //! it takes and clap refuses (with a suggestion) what it would not use.
 
 use super::{parallel, parse, Settings};
+use crate::app::figure::{Figure, Raster};
 use crate::extensions::depth_of_field::DepthOfField;
 use crate::extensions::shadow::Shadows;
 use crate::extensions::texture::Filter;
-use crate::measure::figure::{Figure, Raster, StageName};
 use crate::pipeline::draw::Cull;
 use crate::pipeline::raster::Lines;
+use crate::pipeline::StageName;
 use crate::scene::texture::{
     apply_normal_map, apply_parallax, apply_texture, parse_normal_map, TextureSpec,
 };

@@ -3,7 +3,7 @@
 //! mapping is tested on its own and key scripts replay exactly.
 
 use super::Settings;
-use crate::measure::figure::{Figure, Raster};
+use crate::app::figure::{Figure, Raster};
 use glam::Vec3;
 
 /// The keys the viewer reads, independent of the window library.
@@ -294,7 +294,7 @@ pub fn pressed(now: &[Key], before: &[Key]) -> Vec<Key> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::measure::figure::StageName;
+    use crate::pipeline::StageName;
 
     fn settings() -> Settings {
         Settings::default()

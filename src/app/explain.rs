@@ -17,7 +17,7 @@ use crate::measure::plot::{Canvas, Rgb, BLACK, DARK, GREY};
 use crate::pipeline::clip::ScreenVertex;
 use crate::pipeline::interpolate::{line_pixels, Pixel, Steps};
 use crate::pipeline::raster::edge::SUBPIXEL;
-use crate::pipeline::raster::lines::walk_line;
+use crate::pipeline::raster::rows::walk_line;
 use crate::pipeline::raster::rows::{compute_polygon_rows, draw_polygon_rows, Rows};
 use crate::pipeline::raster::{Bounds, EdgeRaster, Lines, Rasterizer, RowRaster, Viewport};
 use crate::pipeline::Frame;
@@ -583,9 +583,10 @@ pub fn explain_shared(corners: &[(f32, f32); 4]) -> Result<Frame, String> {
 pub fn pixels_drawn_twice(
     mesh: &crate::pipeline::Mesh,
     settings: &super::Settings,
-    raster: crate::measure::figure::Raster,
+    raster: crate::app::figure::Raster,
 ) -> usize {
-    use crate::measure::figure::{Figure, StageName};
+    use crate::app::figure::Figure;
+    use crate::pipeline::StageName;
     use std::collections::HashMap;
     let mut surfaces: HashMap<usize, Vec<usize>> = HashMap::new();
     for (face, surface) in crate::measure::metrics::surfaces(mesh)

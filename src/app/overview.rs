@@ -2,7 +2,7 @@
 //! compared at a glance. Four columns in the handout's order; the eighth panel is
 //! what perspective correction changes, Figure 7 against Figure 8 as a heat map.
 
-use crate::measure::figure::Figure;
+use crate::app::figure::Figure;
 use crate::measure::heat::{heat_map, HEAT_FULL_SCALE};
 use crate::measure::plot::Canvas;
 use crate::pipeline::Frame;

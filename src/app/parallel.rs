@@ -3,9 +3,9 @@
 //! band draws exactly its part of the whole image, so the result is the same, byte
 //! for byte, for any number of threads.
 
+use crate::app::figure::{Figure, Inputs, Render};
 use crate::extensions::normal_map::TangentFrame;
 use crate::extensions::texture::Model;
-use crate::measure::figure::{Figure, Inputs, Render};
 use crate::pipeline::draw::Stats;
 use crate::pipeline::{Camera, Frame, Mesh};
 

@@ -1,7 +1,7 @@
 //! Parsing the command line's values: sizes, vectors and 2D points. Each parser
 //! returns a one-line message naming what is wrong.
 
-use crate::measure::figure::StageName;
+use crate::pipeline::StageName;
 use glam::Vec3;
 
 /// The largest width or height accepted: a 16384 x 16384 frame with its depth

@@ -226,8 +226,9 @@ mod tests {
             glam::Vec3::ONE,
         );
         let mesh = Mesh::from_triangles(&[tri]);
-        let frame = crate::measure::figure::Figure::of(crate::measure::figure::StageName::Points)
-            .render(&mesh, &camera, crate::pipeline::Light::handout());
+        let mut frame = Frame::default();
+        crate::pipeline::Pipeline::<_, crate::pipeline::Affine, crate::pipeline::RowRaster>::new()
+            .render(&crate::pipeline::Points, &mesh, &camera, &mut frame);
         assert_eq!(frame.color.iter().filter(|&&c| c != 0).count(), 3);
         assert_eq!(points_within_one_pixel(&mesh, &camera, &frame), (2, 3));
     }

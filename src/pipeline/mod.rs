@@ -37,6 +37,7 @@ pub use light::Light;
 pub use mesh::{Face, Material, Mesh, Triangle, Vertex};
 pub use raster::RowRaster;
 pub use stage::{
-    Depth, Filled, Lighting, PixelLight, Points, Primitive, Stage, Surface, VertexLight, Wireframe,
+    Depth, Filled, Lighting, PixelLight, Points, Primitive, Stage, StageName, Surface, VertexLight,
+    Wireframe,
 };
 pub use target::{Frame, Target};

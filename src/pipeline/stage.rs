@@ -20,6 +20,72 @@ use super::light::Light;
 use super::mesh::Vertex;
 use glam::Vec3;
 
+/// The handout's six stages by name, in its order, as the command line and the
+/// viewer name them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum StageName {
+    Points,
+    Wireframe,
+    Filled,
+    Depth,
+    VertexLight,
+    PixelLight,
+}
+
+impl StageName {
+    pub const ALL: [StageName; 6] = [
+        StageName::Points,
+        StageName::Wireframe,
+        StageName::Filled,
+        StageName::Depth,
+        StageName::VertexLight,
+        StageName::PixelLight,
+    ];
+
+    /// The subcommand's name.
+    pub fn name(self) -> &'static str {
+        match self {
+            StageName::Points => "points",
+            StageName::Wireframe => "wireframe",
+            StageName::Filled => "filled",
+            StageName::Depth => "depth",
+            StageName::VertexLight => "vertex-light",
+            StageName::PixelLight => "pixel-light",
+        }
+    }
+
+    /// The stage called `name`, as the subcommands spell it.
+    pub fn from_name(name: &str) -> Option<StageName> {
+        StageName::ALL.into_iter().find(|s| s.name() == name)
+    }
+
+    /// Whether the stage draws light (section 6): vertex-light and pixel-light.
+    pub fn is_lit(self) -> bool {
+        matches!(self, StageName::VertexLight | StageName::PixelLight)
+    }
+
+    /// Whether the stage tests depth (section 5 on): depth and the lit stages.
+    pub fn has_depth(self) -> bool {
+        matches!(
+            self,
+            StageName::Depth | StageName::VertexLight | StageName::PixelLight
+        )
+    }
+
+    /// Whether the stage interpolates anything whose interpolation can be affine or
+    /// perspective-correct (1/z alone is always interpolated as it is): the lit
+    /// stages' light or position.
+    pub fn interpolates(self) -> bool {
+        self.is_lit()
+    }
+
+    /// The handout's choice for this stage: section 6.1 interpolates the
+    /// illumination linearly on the screen; section 6.2 corrects the position.
+    pub fn affine_by_default(self) -> bool {
+        self == StageName::VertexLight
+    }
+}
+
 /// What a stage draws for each triangle.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Primitive {

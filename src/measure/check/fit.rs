@@ -7,9 +7,9 @@ use super::image::{
     direct_pass, errors, largest_difference, measure, predict, predicted, where_off, Errors,
     Fitted, Hypothesis, ImageCheck, Measured, Setup, Shading, LAB3_SHARE, NONE, PI_314, THRESHOLD,
 };
-use crate::measure::figure::StageName;
 use crate::pipeline::target::unpack;
 use crate::pipeline::Frame;
+use crate::pipeline::StageName;
 use glam::Vec3;
 
 /// Least squares for P and N over the interior pixels' unclamped channels:

@@ -14,10 +14,13 @@ use super::student::{
     StudentRaster,
 };
 use super::walk::Walk;
-use crate::measure::figure::StageName;
 use crate::pipeline::interpolate::{Affine, Interpolation, Perspective};
 use crate::pipeline::target::{pack, unpack};
-use crate::pipeline::{Camera, Frame, Light, Mesh, Pipeline, Points, Stage, Wireframe};
+use crate::pipeline::StageName;
+use crate::pipeline::{
+    Camera, Depth, Filled, Frame, Light, Mesh, Pipeline, PixelLight, Points, Stage, VertexLight,
+    Wireframe,
+};
 use crate::scene::cornell;
 use glam::Vec3;
 
@@ -230,6 +233,21 @@ fn draw_as<S: Stage>(stage: &S, affine: bool, mesh: &Mesh, camera: &Camera) -> F
         true => draw::<_, Affine>(stage, mesh, camera),
         false => draw::<_, Perspective>(stage, mesh, camera),
     }
+}
+
+/// The handout's seven figures (2 to 8) of `mesh`, drawn with the handout's
+/// walk and light.
+pub(super) fn handout_figures(mesh: &Mesh, camera: &Camera) -> Vec<Frame> {
+    let light = Light::handout();
+    vec![
+        draw::<_, Affine>(&Points, mesh, camera),
+        draw::<_, Affine>(&Wireframe, mesh, camera),
+        draw::<_, Affine>(&Filled, mesh, camera),
+        draw::<_, Affine>(&Depth, mesh, camera),
+        draw::<_, Affine>(&VertexLight { light }, mesh, camera),
+        draw::<_, Perspective>(&PixelLight { light }, mesh, camera),
+        draw::<_, Affine>(&PixelLight { light }, mesh, camera),
+    ]
 }
 
 /// The light with power 1 and no indirect light: what the lit passes draw with.

@@ -12,8 +12,8 @@
 //! and what it leaves out is not black (a render of another shape keeps its
 //! black bands: those are the render's own).
 
-use crate::measure::figure::Figure;
-use crate::pipeline::{Camera, Frame, Light};
+use super::image::handout_figures;
+use crate::pipeline::{Camera, Frame};
 use crate::scene::cornell_box;
 
 /// The render found inside a screenshot, and what was done to find it.
@@ -124,10 +124,7 @@ fn figures_at(side: u32) -> Vec<Frame> {
         ..Camera::handout(side, side)
     };
     let mesh = cornell_box();
-    Figure::FIGURES
-        .iter()
-        .map(|f| f.render(&mesh, &camera, Light::handout()))
-        .collect()
+    handout_figures(&mesh, &camera)
 }
 
 /// A grid of [`SAMPLES`] x [`SAMPLES`] points of a square of `side`, at the

@@ -7,13 +7,13 @@
 //! handout's (sections 3 and 4); [`EdgeRaster`] is exact (edge functions, pixel
 //! centres, the top-left rule).
 
+pub mod bresenham;
 pub mod edge;
-pub mod lines;
 pub mod rows;
 
 pub use edge::EdgeRaster;
-pub use lines::{LineWalk, Lines};
 pub use rows::RowRaster;
+pub use rows::{LineWalk, Lines};
 
 use super::clip::ScreenVertex;
 use super::interpolate::{Pixel, Varying};

@@ -2,10 +2,10 @@
 //! draw time, across image sizes and mesh densities, as a table, a CSV file and
 //! an error-against-time plot.
 
+use crate::app::figure::Figure;
+use crate::app::figure::Inputs;
 use crate::extensions::depth_of_field::DepthOfField;
 use crate::extensions::shadow::Shadows;
-use crate::measure::figure::Inputs;
-use crate::measure::figure::{Figure, StageName};
 use crate::measure::heat::heat_map_picture;
 use crate::measure::metrics::{
     differing_fraction, edge_pixels_within_one_pixel, image_error, interior_mask,
@@ -13,6 +13,7 @@ use crate::measure::metrics::{
 };
 use crate::measure::raytrace::{raytrace, Options, Shading, Traced};
 use crate::measure::timing::{time_runs, Timing};
+use crate::pipeline::StageName;
 use crate::pipeline::{Camera, Frame, Light, Mesh};
 use crate::scene::{framed_pose, subdivide, Pose, Scene};
 use std::fmt::Write as _;

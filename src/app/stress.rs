@@ -4,15 +4,16 @@
 //! each drawn by the core with every pixel checked for NaN and infinity, compared
 //! with the ray tracer where that means something, and timed.
 
-use crate::measure::figure::{Attributes, Figure, Inputs, MakeStage, StageName, WithStage};
+use crate::app::figure::{Attributes, Figure, Inputs, MakeStage, WithStage};
+use crate::app::report::INTERIOR_MARGIN;
 use crate::measure::metrics::{differing_fraction, image_error, interior_mask};
 use crate::measure::raytrace::{self, raytrace, Shading};
-use crate::measure::report::INTERIOR_MARGIN;
 use crate::measure::timing::time_runs;
 use crate::pipeline::interpolate::{Pixel, Steps};
 use crate::pipeline::mesh::Vertex;
 use crate::pipeline::raster::Rasterizer;
 use crate::pipeline::stage::{Primitive, Surface};
+use crate::pipeline::StageName;
 use crate::pipeline::{Camera, Frame, Interpolation, Light, Mesh, Pipeline, Stage, Triangle};
 use crate::scene::cornell_box;
 use glam::Vec3;

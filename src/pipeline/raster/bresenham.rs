@@ -1,53 +1,10 @@
-//! How a line's pixels are walked ([`LineWalk`]): the handout's `Interpolate`
-//! (the running sum of `Steps`, truncated), or Bresenham's line algorithm
-//! (`--lines bresenham`), the alternative one student report put in its place: the same
-//! `max(|dx|, |dy|) + 1` pixels per line, but each the pixel nearest the true
-//! line, found with integer sums alone, where `Interpolate` truncates a running
-//! float sum (and so leans toward smaller x and y by up to a pixel).
-//!
-//! Depth and the varying are still interpolated along the line exactly as
-//! `Interpolate` does it; only the pixel positions change.
-
-use crate::pipeline::interpolate::{line_pixels, Pixel, Steps, Varying};
-
-/// How lines are walked: the lines of the wireframe, and in the rows rasterizer
-/// also the polygon edges that `ComputePolygonRows` follows.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum Lines {
-    /// The handout's `Interpolate` (section 3).
-    #[default]
-    Interpolate,
-    Bresenham,
-}
-
-/// A way of walking the pixels of a line, first to last: the handout's
-/// `Interpolate`, Bresenham's, or (in `rasterlab check`) a student's. The rows
-/// rasterizer's `ComputePolygonRows` takes any.
-pub trait LineWalk {
-    fn walk<V: Varying>(&self, a: Pixel<V>, b: Pixel<V>, f: impl FnMut(Pixel<V>));
-}
-
-impl LineWalk for Lines {
-    #[inline]
-    fn walk<V: Varying>(&self, a: Pixel<V>, b: Pixel<V>, f: impl FnMut(Pixel<V>)) {
-        walk_line(*self, a, b, f)
-    }
-}
-
-/// Every pixel of the line from `a` to `b`, first to last, walked the way `lines`
-/// says. The choice is made once per line; each loop is its own code.
-#[inline]
-pub fn walk_line<V: Varying>(lines: Lines, a: Pixel<V>, b: Pixel<V>, mut f: impl FnMut(Pixel<V>)) {
-    let steps = Steps::new(a, b, line_pixels(&a, &b));
-    match lines {
-        Lines::Interpolate => steps.for_each(f),
-        Lines::Bresenham => {
-            for ((x, y), p) in bresenham((a.x, a.y), (b.x, b.y)).zip(steps) {
-                f(Pixel { x, y, ..p })
-            }
-        }
-    }
-}
+//! Bresenham's line algorithm (`--lines bresenham`), the alternative one student
+//! report put in place of `Interpolate`: the same `max(|dx|, |dy|) + 1` pixels per
+//! line, but each the pixel nearest the true line, found with integer sums alone,
+//! where `Interpolate` truncates a running float sum (and so leans toward smaller
+//! x and y by up to a pixel). Depth and the varying are still interpolated along
+//! the line as `Interpolate` does it (`rows::walk_line`); only the pixel
+//! positions change.
 
 /// The integer pixels of Bresenham's line from `a` to `b`, ends included, in any
 /// of the eight octants: one step along the major axis per pixel, and a step along
@@ -132,25 +89,5 @@ mod tests {
                 );
             }
         }
-    }
-
-    #[test]
-    fn depth_is_interpolated_as_interpolate_does() {
-        let mut a = Pixel::at(0, 0);
-        let mut b = Pixel::at(5, 2);
-        (a.zinv, b.zinv) = (1.0, 4.0);
-        let walk = |lines| {
-            let mut pixels = Vec::new();
-            walk_line(lines, a, b, |p| pixels.push(p));
-            pixels
-        };
-        let (by_interpolate, by_bresenham) = (walk(Lines::Interpolate), walk(Lines::Bresenham));
-        let z = |v: &[Pixel<_>]| v.iter().map(|p| p.zinv).collect::<Vec<_>>();
-        assert_eq!(z(&by_interpolate), z(&by_bresenham));
-        // Interpolate truncates y = 0.4 i, so rows 0.8 and 1.6 stay below the
-        // nearer pixel; Bresenham takes the nearest.
-        let ys = |v: &[Pixel<_>]| v.iter().map(|p| p.y).collect::<Vec<_>>();
-        assert_eq!(ys(&by_interpolate), [0, 0, 0, 1, 1, 2]);
-        assert_eq!(ys(&by_bresenham), [0, 0, 1, 1, 2, 2]);
     }
 }

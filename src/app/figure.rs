@@ -11,77 +11,13 @@ use crate::extensions::textured::{
 };
 use crate::pipeline::draw::{Cull, Stats};
 use crate::pipeline::raster::{EdgeRaster, Lines, Rasterizer, RowRaster};
+use crate::pipeline::StageName;
 use crate::pipeline::{
     Affine, Camera, Depth, Filled, Frame, Interpolation, Light, Lighting, Mesh, Perspective,
     Pipeline, PixelLight, Points, Stage, Target, Varying, VertexLight, Wireframe,
 };
 use glam::Vec3;
 use std::marker::PhantomData;
-
-/// The stages, as the command line and the viewer name them, in the handout's order.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum StageName {
-    Points,
-    Wireframe,
-    Filled,
-    Depth,
-    VertexLight,
-    PixelLight,
-}
-
-impl StageName {
-    pub const ALL: [StageName; 6] = [
-        StageName::Points,
-        StageName::Wireframe,
-        StageName::Filled,
-        StageName::Depth,
-        StageName::VertexLight,
-        StageName::PixelLight,
-    ];
-
-    /// The subcommand's name.
-    pub fn name(self) -> &'static str {
-        match self {
-            StageName::Points => "points",
-            StageName::Wireframe => "wireframe",
-            StageName::Filled => "filled",
-            StageName::Depth => "depth",
-            StageName::VertexLight => "vertex-light",
-            StageName::PixelLight => "pixel-light",
-        }
-    }
-
-    /// The stage called `name`, as the subcommands spell it.
-    pub fn from_name(name: &str) -> Option<StageName> {
-        StageName::ALL.into_iter().find(|s| s.name() == name)
-    }
-
-    /// Whether the stage draws light (section 6): vertex-light and pixel-light.
-    pub fn is_lit(self) -> bool {
-        matches!(self, StageName::VertexLight | StageName::PixelLight)
-    }
-
-    /// Whether the stage tests depth (section 5 on): depth and the lit stages.
-    pub fn has_depth(self) -> bool {
-        matches!(
-            self,
-            StageName::Depth | StageName::VertexLight | StageName::PixelLight
-        )
-    }
-
-    /// Whether the stage interpolates anything whose interpolation can be affine or
-    /// perspective-correct (1/z alone is always interpolated as it is): the lit
-    /// stages' light or position.
-    pub fn interpolates(self) -> bool {
-        self.is_lit()
-    }
-
-    /// The handout's choice for this stage: section 6.1 interpolates the
-    /// illumination linearly on the screen; section 6.2 corrects the position.
-    pub fn affine_by_default(self) -> bool {
-        self == StageName::VertexLight
-    }
-}
 
 /// Which rasterizer draws: the handout's rows (`--raster rows`, the default) or
 /// the exact edge-function rasterizer (`--raster edge`).
