@@ -47,7 +47,7 @@ fn hits(triangles: &[[(f32, f32); 3]], random: &mut Random) -> Vec<u32> {
             zinv: 1.0,
             varying: Nothing {},
         });
-        EdgeRaster::polygon(&mut (), &corners, &viewport(), |p| {
+        EdgeRaster.polygon(&mut (), &corners, &viewport(), |p| {
             count[(p.y * W + p.x) as usize] += 1;
         });
     }

@@ -438,7 +438,7 @@ pub fn explain_edge(corners: &[(f32, f32); 3]) -> Result<Frame, String> {
     let (ox, oy) = grid.min;
     let vertices = corners.map(screen_vertex);
     let mut covered = Vec::new();
-    EdgeRaster::polygon(&mut (), &vertices, &viewport, |p| covered.push((p.x, p.y)));
+    EdgeRaster.polygon(&mut (), &vertices, &viewport, |p| covered.push((p.x, p.y)));
     // Centres exactly on an edge, in the same fixed point the rasterizer uses.
     let snap = |(x, y): (f32, f32)| {
         (
@@ -529,9 +529,9 @@ pub fn explain_shared(corners: &[(f32, f32); 4]) -> Result<Frame, String> {
         for (k, tri) in [[a, b, c], [a, c, d]].iter().enumerate() {
             let mut plot = |p: Pixel<_>| hits[index(p.x, p.y)][k] += 1;
             if edge {
-                EdgeRaster::polygon(&mut (), tri, &viewport, &mut plot);
+                EdgeRaster.polygon(&mut (), tri, &viewport, &mut plot);
             } else {
-                RowRaster::polygon(&mut Rows::new(), tri, &viewport, &mut plot);
+                RowRaster.polygon(&mut Rows::new(), tri, &viewport, &mut plot);
             }
         }
         hits

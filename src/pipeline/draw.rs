@@ -34,6 +34,8 @@ pub struct Pipeline<V: Varying, I: Interpolation = Perspective, R: Rasterizer = 
     /// shader heavy enough to gain from running over plain arrays, which the
     /// compiler vectorises (light per pixel); a cost for a light one.
     pub batch_shading: bool,
+    /// What covers the pixels of each primitive.
+    pub raster: R,
     scratch: R::Scratch<V>,
     /// Every vertex of the mesh in camera space, transformed once per frame
     /// however many faces share it.
@@ -120,6 +122,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Default for Pipeline<V, I, R> 
             cull: Cull::None,
             lines: Lines::Interpolate,
             batch_shading: false,
+            raster: R::default(),
             scratch: Default::default(),
             camera_space: Vec::new(),
             visible: Visible {
@@ -296,7 +299,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         // Counted where it is cheap: rejections are the rare branch, and a batch
         // counts its own pixels.
         let (mut rejected, mut written) = (0u64, 0u64);
-        R::polygon(
+        self.raster.polygon(
             &mut self.scratch,
             projected.as_slice(),
             &view.viewport,
@@ -347,7 +350,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
                 continue;
             };
             let stats = &mut self.stats;
-            R::point(s, &view.viewport, |p| {
+            self.raster.point(s, &view.viewport, |p| {
                 stats.count(shade_pixel::<S, I>(stage, p, surface, target))
             });
         }
@@ -381,7 +384,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
             };
             let Some((a, b)) = banded else { continue };
             let stats = &mut self.stats;
-            R::line(a, b, &view.viewport, |p| {
+            self.raster.line(a, b, &view.viewport, |p| {
                 stats.count(shade_pixel::<S, I>(stage, p, surface, target))
             });
         }

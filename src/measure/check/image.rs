@@ -10,8 +10,7 @@
 //! or by truncating and compared with the screenshot.
 
 use super::student::{
-    decode, with_geometry, DepthMode, DirectPerPixel, DirectPerVertex, Geometry, Shows,
-    StudentRaster,
+    decode, DepthMode, DirectPerPixel, DirectPerVertex, Geometry, Shows, StudentRaster,
 };
 use super::walk::Walk;
 use crate::pipeline::interpolate::{Affine, Interpolation, Perspective};
@@ -221,32 +220,40 @@ pub struct Measured {
     pub(super) interior: Vec<bool>,
 }
 
-fn draw<S: Stage, I: Interpolation>(stage: &S, mesh: &Mesh, camera: &Camera) -> Frame {
+/// `stage` of `mesh` as the rows rasterizer draws it with a student's `geometry`.
+fn draw<S: Stage, I: Interpolation>(
+    geometry: Geometry,
+    stage: &S,
+    mesh: &Mesh,
+    camera: &Camera,
+) -> Frame {
     let mut frame = Frame::default();
-    Pipeline::<S::Varying, I, StudentRaster>::new().render(stage, mesh, camera, &mut frame);
+    let mut pipeline = Pipeline::<S::Varying, I, StudentRaster>::new();
+    pipeline.raster = StudentRaster { geometry };
+    pipeline.render(stage, mesh, camera, &mut frame);
     frame
 }
 
 /// [`draw`] with the per-pixel struct interpolated affinely or perspective-correctly.
-fn draw_as<S: Stage>(stage: &S, affine: bool, mesh: &Mesh, camera: &Camera) -> Frame {
+fn draw_as<S: Stage>(g: Geometry, stage: &S, affine: bool, mesh: &Mesh, camera: &Camera) -> Frame {
     match affine {
-        true => draw::<_, Affine>(stage, mesh, camera),
-        false => draw::<_, Perspective>(stage, mesh, camera),
+        true => draw::<_, Affine>(g, stage, mesh, camera),
+        false => draw::<_, Perspective>(g, stage, mesh, camera),
     }
 }
 
 /// The handout's seven figures (2 to 8) of `mesh`, drawn with the handout's
 /// walk and light.
 pub(super) fn handout_figures(mesh: &Mesh, camera: &Camera) -> Vec<Frame> {
-    let light = Light::handout();
+    let (light, g) = (Light::handout(), Geometry::default());
     vec![
-        draw::<_, Affine>(&Points, mesh, camera),
-        draw::<_, Affine>(&Wireframe, mesh, camera),
-        draw::<_, Affine>(&Filled, mesh, camera),
-        draw::<_, Affine>(&Depth, mesh, camera),
-        draw::<_, Affine>(&VertexLight { light }, mesh, camera),
-        draw::<_, Perspective>(&PixelLight { light }, mesh, camera),
-        draw::<_, Affine>(&PixelLight { light }, mesh, camera),
+        draw::<_, Affine>(g, &Points, mesh, camera),
+        draw::<_, Affine>(g, &Wireframe, mesh, camera),
+        draw::<_, Affine>(g, &Filled, mesh, camera),
+        draw::<_, Affine>(g, &Depth, mesh, camera),
+        draw::<_, Affine>(g, &VertexLight { light }, mesh, camera),
+        draw::<_, Perspective>(g, &PixelLight { light }, mesh, camera),
+        draw::<_, Affine>(g, &PixelLight { light }, mesh, camera),
     ]
 }
 
@@ -262,15 +269,34 @@ fn unit_light(position: Vec3) -> Light {
 /// The direct light per unit power at each pixel, as `h` interpolates it.
 pub(super) fn direct_pass(h: Hypothesis, mesh: &Mesh, camera: &Camera, light: Vec3) -> Vec<f32> {
     let depth = h.geometry.depth != DepthMode::None;
-    let frame = with_geometry(h.geometry, || {
+    let g = h.geometry;
+    let frame = {
         let light = unit_light(light);
         match (h.stage == StageName::VertexLight, depth) {
-            (true, true) => draw_as(&DirectPerVertex::<true> { light }, h.affine, mesh, camera),
-            (true, false) => draw_as(&DirectPerVertex::<false> { light }, h.affine, mesh, camera),
-            (false, true) => draw_as(&DirectPerPixel::<true> { light }, h.affine, mesh, camera),
-            (false, false) => draw_as(&DirectPerPixel::<false> { light }, h.affine, mesh, camera),
+            (true, true) => draw_as(
+                g,
+                &DirectPerVertex::<true> { light },
+                h.affine,
+                mesh,
+                camera,
+            ),
+            (true, false) => draw_as(
+                g,
+                &DirectPerVertex::<false> { light },
+                h.affine,
+                mesh,
+                camera,
+            ),
+            (false, true) => draw_as(g, &DirectPerPixel::<true> { light }, h.affine, mesh, camera),
+            (false, false) => draw_as(
+                g,
+                &DirectPerPixel::<false> { light },
+                h.affine,
+                mesh,
+                camera,
+            ),
         }
-    });
+    };
     frame.color.iter().map(|&c| decode(c)).collect()
 }
 
@@ -283,10 +309,11 @@ pub fn measure(h: Hypothesis, mesh: &Mesh, camera: &Camera, light: Vec3) -> Meas
     let mut direct = Vec::new();
     match h.stage {
         StageName::Points | StageName::Wireframe => {
-            let frame = with_geometry(h.geometry, || match h.stage {
-                StageName::Points => draw::<_, Affine>(&Points, mesh, camera),
-                _ => draw::<_, Affine>(&Wireframe, mesh, camera),
-            });
+            let g = h.geometry;
+            let frame = match h.stage {
+                StageName::Points => draw::<_, Affine>(g, &Points, mesh, camera),
+                _ => draw::<_, Affine>(g, &Wireframe, mesh, camera),
+            };
             surfaces.push((Vec3::ONE, Vec3::ZERO));
             for (s, &c) in surface.iter_mut().zip(&frame.color) {
                 if c != 0 {
@@ -296,19 +323,18 @@ pub fn measure(h: Hypothesis, mesh: &Mesh, camera: &Camera, light: Vec3) -> Meas
         }
         _ => {
             let depth = h.geometry.depth != DepthMode::None;
-            let (colors, normals) = with_geometry(h.geometry, || {
-                if depth {
-                    (
-                        draw::<_, Affine>(&Shows::<true, false>, mesh, camera),
-                        draw::<_, Affine>(&Shows::<true, true>, mesh, camera),
-                    )
-                } else {
-                    (
-                        draw::<_, Affine>(&Shows::<false, false>, mesh, camera),
-                        draw::<_, Affine>(&Shows::<false, true>, mesh, camera),
-                    )
-                }
-            });
+            let g = h.geometry;
+            let (colors, normals) = if depth {
+                (
+                    draw::<_, Affine>(g, &Shows::<true, false>, mesh, camera),
+                    draw::<_, Affine>(g, &Shows::<true, true>, mesh, camera),
+                )
+            } else {
+                (
+                    draw::<_, Affine>(g, &Shows::<false, false>, mesh, camera),
+                    draw::<_, Affine>(g, &Shows::<false, true>, mesh, camera),
+                )
+            };
             // Each drawn pixel's (material, face normal), by their packed colours.
             let mut known: Vec<(u32, u32)> = Vec::new();
             for face in &mesh.faces {

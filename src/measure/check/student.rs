@@ -3,11 +3,9 @@
 //! measure what a pixel shows (its surface, the direct light per unit power) so
 //! that the light's power and the indirect light can be fitted afterwards.
 //!
-//! The core's `Rasterizer` is a type with no state, monomorphised into every
-//! pipeline for speed. One rasterizer type per combination of variants would
-//! multiply the pipelines compiled (8 walks x 2 projections x every stage), so
-//! the variant in use is instead set for the current thread while one frame is
-//! drawn ([`with_geometry`]); drawing happens on that thread only.
+//! A rasterizer is a value the pipeline holds, so [`StudentRaster`] carries the
+//! variants as a field: one rasterizer type for all 8 walks x 2 projections x
+//! the depth modes, chosen per pipeline at run time.
 
 use super::walk::Walk;
 use crate::pipeline::clip::{ScreenVertex, MAX_CORNERS};
@@ -18,7 +16,6 @@ use crate::pipeline::raster::{Rasterizer, Viewport};
 use crate::pipeline::stage::{Primitive, Stage, Surface};
 use crate::pipeline::Light;
 use glam::Vec3;
-use std::cell::Cell;
 
 /// How the depth test is done.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -41,23 +38,6 @@ pub struct Geometry {
     pub depth: DepthMode,
 }
 
-thread_local! {
-    static GEOMETRY: Cell<Geometry> = Cell::new(Geometry::default());
-}
-
-/// Runs `draw` with [`StudentRaster`] drawing as `geometry` says, on this thread;
-/// the geometry before is restored afterwards, also if `draw` panics.
-pub fn with_geometry<T>(geometry: Geometry, draw: impl FnOnce() -> T) -> T {
-    struct Restore(Geometry);
-    impl Drop for Restore {
-        fn drop(&mut self) {
-            GEOMETRY.with(|g| g.set(self.0));
-        }
-    }
-    let _restore = Restore(GEOMETRY.with(|g| g.replace(geometry)));
-    draw()
-}
-
 /// With [`DepthMode::Z`], what the rasterizer carries in place of 1/z:
 /// `Z_CARRIED - z`, linear in z and larger when nearer, so the core's test (keep
 /// the larger, 0 = nothing drawn) keeps the smaller z. Every z of the lab's
@@ -69,7 +49,9 @@ const Z_CARRIED: f32 = 16.0;
 /// The rows rasterizer with the variants of [`Geometry`]; the handout's when the
 /// geometry is the default.
 #[derive(Clone, Copy, Debug, Default)]
-pub struct StudentRaster;
+pub struct StudentRaster {
+    pub geometry: Geometry,
+}
 
 #[inline]
 fn place<V>(s: ScreenVertex<V>, viewport: &Viewport, g: Geometry) -> Pixel<V> {
@@ -91,27 +73,29 @@ fn place<V>(s: ScreenVertex<V>, viewport: &Viewport, g: Geometry) -> Pixel<V> {
     }
 }
 
-fn geometry() -> Geometry {
-    GEOMETRY.with(Cell::get)
-}
-
 impl Rasterizer for StudentRaster {
     type Scratch<V: Varying> = Rows<V>;
 
-    fn point<V: Varying>(p: ScreenVertex<V>, viewport: &Viewport, mut plot: impl FnMut(Pixel<V>)) {
-        let p = place(p, viewport, geometry());
+    fn point<V: Varying>(
+        &self,
+        p: ScreenVertex<V>,
+        viewport: &Viewport,
+        mut plot: impl FnMut(Pixel<V>),
+    ) {
+        let p = place(p, viewport, self.geometry);
         if viewport.bounds.contains(&p) {
             plot(p);
         }
     }
 
     fn line<V: Varying>(
+        &self,
         a: ScreenVertex<V>,
         b: ScreenVertex<V>,
         viewport: &Viewport,
         mut plot: impl FnMut(Pixel<V>),
     ) {
-        let g = geometry();
+        let g = self.geometry;
         let (a, b) = (place(a, viewport, g), place(b, viewport, g));
         for p in g.walk.pixels(a, b) {
             if viewport.bounds.contains(&p) {
@@ -121,12 +105,13 @@ impl Rasterizer for StudentRaster {
     }
 
     fn polygon<V: Varying>(
+        &self,
         rows: &mut Rows<V>,
         corners: &[ScreenVertex<V>],
         viewport: &Viewport,
         plot: impl FnMut(Pixel<V>),
     ) {
-        let g = geometry();
+        let g = self.geometry;
         let mut pixels = [Pixel::default(); MAX_CORNERS];
         for (p, &c) in pixels.iter_mut().zip(corners) {
             *p = place(c, viewport, g);
@@ -237,14 +222,12 @@ mod tests {
         fn both<S: Stage>(stage: &S, mesh: &crate::pipeline::Mesh, c: &Camera) -> [Frame; 2] {
             let (mut core, mut student) = (Frame::default(), Frame::default());
             Pipeline::<S::Varying, Perspective>::new().render(stage, mesh, c, &mut core);
-            with_geometry(Geometry::default(), || {
-                Pipeline::<S::Varying, Perspective, StudentRaster>::new().render(
-                    stage,
-                    mesh,
-                    c,
-                    &mut student,
-                )
-            });
+            Pipeline::<S::Varying, Perspective, StudentRaster>::new().render(
+                stage,
+                mesh,
+                c,
+                &mut student,
+            );
             [core, student]
         }
         let light = Light::handout();

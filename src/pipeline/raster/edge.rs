@@ -178,7 +178,12 @@ fn triangle<V: Varying>(
 impl Rasterizer for EdgeRaster {
     type Scratch<V: Varying> = ();
 
-    fn point<V: Varying>(p: ScreenVertex<V>, viewport: &Viewport, mut plot: impl FnMut(Pixel<V>)) {
+    fn point<V: Varying>(
+        &self,
+        p: ScreenVertex<V>,
+        viewport: &Viewport,
+        mut plot: impl FnMut(Pixel<V>),
+    ) {
         let p = point_pixel(p, viewport);
         if viewport.bounds.contains(&p) {
             plot(p);
@@ -186,6 +191,7 @@ impl Rasterizer for EdgeRaster {
     }
 
     fn line<V: Varying>(
+        &self,
         a: ScreenVertex<V>,
         b: ScreenVertex<V>,
         viewport: &Viewport,
@@ -198,6 +204,7 @@ impl Rasterizer for EdgeRaster {
     /// A convex polygon as a fan of triangles from its first corner: the fan's
     /// inner edges are shared, and the top-left rule draws each pixel once.
     fn polygon<V: Varying>(
+        &self,
         _: &mut (),
         corners: &[ScreenVertex<V>],
         viewport: &Viewport,
@@ -260,7 +267,7 @@ mod tests {
     fn covered(corners: &[(f32, f32)]) -> Vec<(i32, i32)> {
         let v: Vec<_> = corners.iter().map(|&(x, y)| at(x, y, 16, 16)).collect();
         let mut out = Vec::new();
-        EdgeRaster::polygon(&mut (), &v, &viewport(16, 16), |p| out.push((p.x, p.y)));
+        EdgeRaster.polygon(&mut (), &v, &viewport(16, 16), |p| out.push((p.x, p.y)));
         out.sort();
         out
     }
@@ -298,7 +305,7 @@ mod tests {
                 varying: q,
             });
         let mut seen = 0;
-        EdgeRaster::polygon(&mut (), &v, &viewport(16, 16), |p| {
+        EdgeRaster.polygon(&mut (), &v, &viewport(16, 16), |p| {
             // q = x at the centre, x + 0.5.
             assert!((p.varying - (p.x as f32 + 0.5)).abs() < 1e-5, "{p:?}");
             assert!((p.zinv - 1.0).abs() < 1e-6);

@@ -56,16 +56,24 @@ pub struct Viewport {
     pub lines: Lines,
 }
 
-/// A way of covering pixels. Its scratch buffers are kept by the caller from one
-/// primitive and one frame to the next.
+/// A way of covering pixels, as a value the pipeline holds (the handout's and the
+/// exact one are unit structs; `rasterlab check`'s carries a student's variants).
+/// Its scratch buffers are kept by the caller from one primitive and one frame to
+/// the next.
 pub trait Rasterizer: Copy + Default + Send + 'static {
     type Scratch<V: Varying>: Default + Send;
 
     /// A projected point as one pixel, if it lands in the bounds.
-    fn point<V: Varying>(p: ScreenVertex<V>, viewport: &Viewport, plot: impl FnMut(Pixel<V>));
+    fn point<V: Varying>(
+        &self,
+        p: ScreenVertex<V>,
+        viewport: &Viewport,
+        plot: impl FnMut(Pixel<V>),
+    );
 
     /// The pixels of the segment from `a` to `b`.
     fn line<V: Varying>(
+        &self,
         a: ScreenVertex<V>,
         b: ScreenVertex<V>,
         viewport: &Viewport,
@@ -74,6 +82,7 @@ pub trait Rasterizer: Copy + Default + Send + 'static {
 
     /// The pixels of a convex polygon, each once.
     fn polygon<V: Varying>(
+        &self,
         scratch: &mut Self::Scratch<V>,
         corners: &[ScreenVertex<V>],
         viewport: &Viewport,

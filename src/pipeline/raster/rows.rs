@@ -31,7 +31,12 @@ pub fn to_pixel<V>(s: ScreenVertex<V>, viewport: &Viewport) -> Pixel<V> {
 impl Rasterizer for RowRaster {
     type Scratch<V: Varying> = Rows<V>;
 
-    fn point<V: Varying>(p: ScreenVertex<V>, viewport: &Viewport, mut plot: impl FnMut(Pixel<V>)) {
+    fn point<V: Varying>(
+        &self,
+        p: ScreenVertex<V>,
+        viewport: &Viewport,
+        mut plot: impl FnMut(Pixel<V>),
+    ) {
         let p = to_pixel(p, viewport);
         if viewport.bounds.contains(&p) {
             plot(p);
@@ -39,6 +44,7 @@ impl Rasterizer for RowRaster {
     }
 
     fn line<V: Varying>(
+        &self,
         a: ScreenVertex<V>,
         b: ScreenVertex<V>,
         viewport: &Viewport,
@@ -49,6 +55,7 @@ impl Rasterizer for RowRaster {
     }
 
     fn polygon<V: Varying>(
+        &self,
         rows: &mut Rows<V>,
         corners: &[ScreenVertex<V>],
         viewport: &Viewport,
