@@ -5,8 +5,8 @@
 //! normal and reflectance. Interpolated as position/z and multiplied by z at the
 //! pixel it is perspective-correct (Figure 7); as the position itself, affine
 //! (Figure 8).
-//! `cargo run --release --example 7-pixel-light [OUT.png] [--affine]` writes
-//! fig7-pixel-light.png (fig8-pixel-light-affine.png with --affine).
+//! `cargo run --release --example 7-pixel-light [OUT.png]` writes
+//! fig7-pixel-light.png; `draw(false)` in `main` draws Figure 8.
 
 use glam::{IVec2, Vec3};
 use std::f32::consts::PI;
@@ -277,17 +277,11 @@ fn draw_polygon(
 }
 
 fn main() {
-    let affine = std::env::args().any(|a| a == "--affine");
-    let default = if affine {
-        "fig8-pixel-light-affine.png"
-    } else {
-        "fig7-pixel-light.png"
-    };
     let out = std::env::args()
-        .skip(1)
-        .find(|a| a != "--affine")
-        .unwrap_or(default.into());
-    let rgb = draw(!affine).to_rgb8();
+        .nth(1)
+        .unwrap_or("fig7-pixel-light.png".into());
+    // draw(false) interpolates the position affinely: Figure 8.
+    let rgb = draw(true).to_rgb8();
     let (w, h) = (SCREEN_WIDTH as u32, SCREEN_HEIGHT as u32);
     match image::save_buffer(&out, &rgb, w, h, image::ExtendedColorType::Rgb8) {
         Ok(()) => println!("wrote {out}"),
