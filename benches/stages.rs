@@ -17,12 +17,13 @@ use std::hint::black_box;
 
 fn bench(c: &mut Criterion, group: &str, mesh: &Mesh, size: (u32, u32), figures: &[Figure]) {
     let settings = Settings {
-        width: size.0,
-        height: size.1,
-        focal: size.1 as f32,
+        camera: rasterlab::Camera {
+            focal: size.1 as f32,
+            ..rasterlab::Camera::handout(size.0, size.1)
+        },
         ..Settings::default()
     };
-    let (camera, uniforms) = (settings.camera(), Inputs::lit(settings.light()));
+    let (camera, uniforms) = (settings.camera, Inputs::lit(settings.light));
     let mut g = c.benchmark_group(group);
     g.sample_size(20);
     g.throughput(Throughput::Elements((size.0 * size.1) as u64));
@@ -92,7 +93,7 @@ fn lines(c: &mut Criterion) {
     }
     let mesh = cornell_box();
     let settings = Settings::default();
-    let (camera, uniforms) = (settings.camera(), Inputs::lit(settings.light()));
+    let (camera, uniforms) = (settings.camera, Inputs::lit(settings.light));
     g.throughput(Throughput::Elements(500 * 500));
     for stage in [StageName::Wireframe, StageName::Filled] {
         for lines in [Lines::Interpolate, Lines::Bresenham] {

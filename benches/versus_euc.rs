@@ -151,15 +151,18 @@ impl Euc {
                 })
             })
             .collect();
-        let size = [settings.width as usize, settings.height as usize];
+        let size = [
+            settings.camera.width as usize,
+            settings.camera.height as usize,
+        ];
         Euc {
             corners,
             clip: Clip {
-                projection: settings.camera().projection(),
-                sx: settings.focal / (settings.width as f32 / 2.0),
-                sy: settings.focal / (settings.height as f32 / 2.0),
+                projection: settings.camera.projection(),
+                sx: settings.camera.focal / (settings.camera.width as f32 / 2.0),
+                sy: settings.camera.focal / (settings.camera.height as f32 / 2.0),
             },
-            light: settings.light(),
+            light: settings.light,
             color: Buffer2d::new(size, 0),
             depth: Buffer2d::new(size, 0.0),
         }
@@ -201,16 +204,17 @@ fn median(mut v: Vec<Duration>) -> f64 {
 /// rasterlab's edge rasterizer's differ.
 fn run(case: &Case) -> (String, usize) {
     let settings = Settings {
-        width: case.size.0,
-        height: case.size.1,
-        focal: if case.size == (500, 500) {
-            500.0
-        } else {
-            case.size.1 as f32
+        camera: rasterlab::Camera {
+            focal: if case.size == (500, 500) {
+                500.0
+            } else {
+                case.size.1 as f32
+            },
+            ..rasterlab::Camera::handout(case.size.0, case.size.1)
         },
         ..Settings::default()
     };
-    let (camera, uniforms) = (settings.camera(), Inputs::lit(settings.light()));
+    let (camera, uniforms) = (settings.camera, Inputs::lit(settings.light));
     let figure = Figure::of(case.stage);
     let mut ours: Vec<_> = [Raster::Rows, Raster::Edge]
         .map(|r| {

@@ -152,10 +152,12 @@ fn run(cli: Cli) -> Result<(), Failure> {
         }
         Command::Report(a) => {
             let scene = app::cli::load_scene(&a.scene)?;
-            let mut pose = rasterlab::app::report::pose_for(&scene)?;
-            pose.light = a.light.unwrap_or(pose.light);
-            pose.light_power = a.light_power.unwrap_or(pose.light_power);
-            wrote(app::report(&a.out, a.quick, &scene, &pose, |line| {
+            let mut view = rasterlab::app::report::view_for(&scene)?;
+            view.light.position = a.light.unwrap_or(view.light.position);
+            if let Some(power) = a.light_power {
+                view.light.power = glam::Vec3::splat(power);
+            }
+            wrote(app::report(&a.out, a.quick, &scene, &view, |line| {
                 eprintln!("{line}")
             })?);
             Ok(())

@@ -44,7 +44,7 @@ static GLOBAL: Counting = Counting;
 #[test]
 fn a_frame_after_the_first_allocates_nothing() {
     let s = Settings::default();
-    let (camera, uniforms) = (s.camera(), Inputs::lit(s.light()));
+    let (camera, uniforms) = (s.camera, Inputs::lit(s.light));
     for mesh in [cornell_box(), subdivide(&cornell_box(), 8)] {
         for figure in Figure::FIGURES {
             for raster in [Raster::Rows, Raster::Edge] {

@@ -1086,8 +1086,11 @@ fn swapped_channels_other_focal_lengths_and_pasted_rows_are_explained() {
     }
     write_image(&swapped, &dir.join("swapped.png")).unwrap();
     let small = Settings {
-        width: 250,
-        height: 250,
+        camera: rasterlab::Camera {
+            width: 250,
+            height: 250,
+            ..settings.camera
+        },
         ..settings
     };
     let (small, _) = app::render(Figure::of(StageName::Depth), &cornell_box(), &small, None);
@@ -1211,9 +1214,10 @@ fn the_render_is_found_inside_a_window_screenshot() {
     }
     // 640 x 480 with f = 480: the box between black bands, which are the render's.
     let wide = Settings {
-        width: 640,
-        height: 480,
-        focal: 480.0,
+        camera: rasterlab::Camera {
+            focal: 480.0,
+            ..rasterlab::Camera::handout(640, 480)
+        },
         ..Settings::default()
     };
     let (frame, _) = app::render(Figure::of(StageName::Depth), &cornell_box(), &wide, None);
@@ -1233,8 +1237,11 @@ fn a_light_moved_far_is_found_and_light_is_never_negative() {
     use rasterlab::{Figure, StageName};
     let dir = temp_dir("check-moved-light");
     let moved = Settings {
-        light: Vec3::new(-0.6, 0.2, 0.5),
-        light_power: 5.1,
+        light: rasterlab::Light {
+            position: Vec3::new(-0.6, 0.2, 0.5),
+            power: Vec3::splat(5.1),
+            ..rasterlab::Light::handout()
+        },
         ..Settings::default()
     };
     let (frame, _) = app::render(
@@ -1252,7 +1259,11 @@ fn a_light_moved_far_is_found_and_light_is_never_negative() {
     let (check, _) = check_image_file(&shot, &fit).unwrap();
     let f = check.fitted.expect("a lab 3 image");
     assert_eq!(f.hypothesis.figure(), 7);
-    assert!((f.light - moved.light).length() < 0.02, "{:?}", f.light);
+    assert!(
+        (f.light - moved.light.position).length() < 0.02,
+        "{:?}",
+        f.light
+    );
     assert!(
         (f.shading.power / 5.1 - 1.0).abs() < 0.01,
         "{}",
@@ -1283,9 +1294,12 @@ fn a_moved_camera_is_found() {
     use rasterlab::{Figure, StageName};
     let dir = temp_dir("check-moved-camera");
     let walked = Settings {
-        camera: Vec3::new(0.3, -0.2, -4.5),
-        yaw: 8.0,
-        pitch: -5.0,
+        camera: rasterlab::Camera {
+            position: Vec3::new(0.3, -0.2, -4.5),
+            yaw: 8f32.to_radians(),
+            pitch: (-5f32).to_radians(),
+            ..rasterlab::Camera::handout(500, 500)
+        },
         ..Settings::default()
     };
     let (frame, _) = app::render(Figure::of(StageName::Depth), &cornell_box(), &walked, None);
@@ -1297,7 +1311,7 @@ fn a_moved_camera_is_found() {
         Some(5)
     );
     let c = check.camera.expect("a fitted camera");
-    let off = (c.position - walked.camera).abs();
+    let off = (c.position - walked.camera.position).abs();
     assert!(off.max_element() < 0.025, "{c:?}");
     assert!((c.yaw.to_degrees() - 8.0).abs() < 0.5, "{c:?}");
     assert!((c.pitch.to_degrees() + 5.0).abs() < 0.5, "{c:?}");

@@ -190,7 +190,7 @@ fn edge_depth_agrees_with_a_ray_cast_through_pixel_centres() {
     // snapping distance (1/256 pixel, so 1/128 to be safe) of a projected edge, or
     // where two surfaces meet at one depth and the two break the tie differently.
     let s = rasterlab::app::Settings::default();
-    let (camera, light) = (s.camera(), s.light());
+    let (camera, light) = (s.camera, s.light);
     let mesh = rasterlab::cornell_box();
     let edge = rasterlab::Figure::of(rasterlab::StageName::Depth)
         .with_raster(rasterlab::app::figure::Raster::Edge)

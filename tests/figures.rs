@@ -124,14 +124,18 @@ fn committed_pictures_match_the_code() {
         pitch: 0.0,
         warnings: Vec::new(),
     };
-    let pose = rasterlab::scene::framed_pose(&scene, glam::Vec3::Z, 300.0, 300, 300).unwrap();
-    let settings = Settings {
-        width: 300,
-        height: 300,
+    let looking = rasterlab::Camera {
         focal: 300.0,
-        camera: pose.camera,
-        light: glam::Vec3::new(-1.0, -1.5, -2.0),
-        light_power: 20.0,
+        ..rasterlab::Camera::handout(300, 300)
+    };
+    let (camera, _) = rasterlab::scene::framed_view(&scene, &looking).unwrap();
+    let settings = Settings {
+        camera,
+        light: rasterlab::Light {
+            position: glam::Vec3::new(-1.0, -1.5, -2.0),
+            power: glam::Vec3::splat(20.0),
+            ..rasterlab::Light::handout()
+        },
         ..Settings::default()
     };
     for stage in [
@@ -179,7 +183,10 @@ fn committed_pictures_match_the_code() {
     }
     // rasterlab pixel-light [--shadows [--pcf]] --light-power 8; raytrace --shadows
     let bright = Settings {
-        light_power: 8.0,
+        light: rasterlab::Light {
+            power: glam::Vec3::splat(8.0),
+            ..rasterlab::Light::handout()
+        },
         ..Settings::default()
     };
     for (name, shadows) in [
@@ -197,8 +204,8 @@ fn committed_pictures_match_the_code() {
     };
     let traced = rasterlab::measure::raytrace::raytrace(
         &cornell_box(),
-        &bright.camera(),
-        &bright.light(),
+        &bright.camera,
+        &bright.light,
         &rays,
     );
     assert_picture(&steps.join("shadows-rays.png"), &traced.frame);
@@ -208,20 +215,22 @@ fn committed_pictures_match_the_code() {
     let s = Settings::default();
     let (frame, _) = app::render(Figure::of(pixel_light), &bumped, &s, None);
     assert_picture(&steps.join("normal-map-bumps.png"), &frame);
-    let traced = rasterlab::measure::raytrace::raytrace(
-        &bumped,
-        &s.camera(),
-        &s.light(),
-        &Default::default(),
-    );
+    let traced =
+        rasterlab::measure::raytrace::raytrace(&bumped, &s.camera, &s.light, &Default::default());
     assert_picture(&steps.join("normal-map-rays.png"), &traced.frame);
     // rasterlab pixel-light --texture checker --normal-map bumps [--parallax]
     //   --camera 0.3,0,-0.2 --yaw -30 --light 0,0,0.4 --light-power 2
     let close = Settings {
-        camera: glam::Vec3::new(0.3, 0.0, -0.2),
-        yaw: -30.0,
-        light: glam::Vec3::new(0.0, 0.0, 0.4),
-        light_power: 2.0,
+        camera: rasterlab::Camera {
+            position: glam::Vec3::new(0.3, 0.0, -0.2),
+            yaw: (-30f32).to_radians(),
+            ..rasterlab::Camera::handout(500, 500)
+        },
+        light: rasterlab::Light {
+            position: glam::Vec3::new(0.0, 0.0, 0.4),
+            power: glam::Vec3::splat(2.0),
+            ..rasterlab::Light::handout()
+        },
         ..Settings::default()
     };
     for (name, parallax) in [("off", false), ("on", true)] {
@@ -247,8 +256,8 @@ fn committed_pictures_match_the_code() {
     // rasterlab report: the heat maps (deterministic, unlike its times)
     let plan = rasterlab::app::report::Plan::full();
     let cornell = rasterlab::scene::parse_scene("cornell").unwrap();
-    let pose = rasterlab::app::report::pose_for(&cornell).unwrap();
-    for (name, picture) in rasterlab::app::report::heat_maps(&plan, &cornell, &pose) {
+    let view = rasterlab::app::report::view_for(&cornell).unwrap();
+    for (name, picture) in rasterlab::app::report::heat_maps(&plan, &cornell, &view) {
         assert_picture(&docs().join("report").join(name), &picture);
     }
 }

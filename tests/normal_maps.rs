@@ -59,7 +59,7 @@ fn bumps_tilt_the_light_as_the_ray_tracer_does() {
     let s = Settings::default();
     let edge = pixel_light(&mesh, Raster::Edge);
     let plain = pixel_light(&rasterlab::cornell_box(), Raster::Edge);
-    let traced = raytrace(&mesh, &s.camera(), &s.light(), &Options::default()).frame;
+    let traced = raytrace(&mesh, &s.camera, &s.light, &Options::default()).frame;
     let count = |a: &Frame, b: &Frame| {
         a.color
             .iter()
@@ -99,10 +99,16 @@ fn normal_maps_are_refused_where_nothing_reads_them() {
 fn parallax_moves_what_the_domes_show() {
     use rasterlab::scene::texture::{apply_parallax, apply_texture, TextureSpec};
     let s = Settings {
-        camera: Vec3::new(0.3, 0.0, -0.2),
-        yaw: -30.0,
-        light: Vec3::new(0.0, 0.0, 0.4),
-        light_power: 2.0,
+        camera: rasterlab::Camera {
+            position: Vec3::new(0.3, 0.0, -0.2),
+            yaw: (-30f32).to_radians(),
+            ..rasterlab::Camera::handout(500, 500)
+        },
+        light: rasterlab::Light {
+            position: Vec3::new(0.0, 0.0, 0.4),
+            power: Vec3::splat(2.0),
+            ..rasterlab::Light::handout()
+        },
         ..Settings::default()
     };
     let draw = |parallax: bool| {

@@ -13,20 +13,24 @@ fn one_two_and_seven_threads_draw_the_same_bytes() {
     let sphere = parse_scene("sphere:100000").unwrap();
     let box_ = parse_scene("cornell").unwrap();
     let settings = Settings {
-        width: 320,
-        height: 241, // bands of unequal height
-        focal: 320.0,
+        camera: rasterlab::Camera {
+            focal: 320.0,
+            ..rasterlab::Camera::handout(320, 241) // bands of unequal height
+        },
         ..Settings::default()
     };
-    for (scene, pose_camera) in [
-        (&box_, settings.camera),
+    for (scene, position) in [
+        (&box_, settings.camera.position),
         (&sphere, glam::Vec3::new(0.0, 0.0, -2.5)),
     ] {
         let s = Settings {
-            camera: pose_camera,
+            camera: rasterlab::Camera {
+                position,
+                ..settings.camera
+            },
             ..settings
         };
-        let (camera, uniforms) = (s.camera(), Inputs::lit(s.light()));
+        let (camera, uniforms) = (s.camera, Inputs::lit(s.light));
         for figure in Figure::FIGURES {
             for raster in [Raster::Rows, Raster::Edge] {
                 let figure = figure.with_raster(raster);

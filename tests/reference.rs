@@ -13,11 +13,11 @@ use std::process::Command;
 fn pixel_light_is_the_closest_lit_stage_to_the_ray_tracer() {
     let s = Settings::default();
     let scene = cornell_box();
-    let reference = raytrace(&scene, &s.camera(), &s.light(), &Options::default());
+    let reference = raytrace(&scene, &s.camera, &s.light, &Options::default());
     let mask = interior_mask(&scene, &reference.hit, 500, 500, INTERIOR_MARGIN);
     let error = |stage, affine| {
         let frame =
-            Figure::with_interpolation(stage, Some(affine)).render(&scene, &s.camera(), s.light());
+            Figure::with_interpolation(stage, Some(affine)).render(&scene, &s.camera, s.light);
         image_error(&frame, &reference.frame, Some(&mask)).rmse
     };
     let correct = error(StageName::PixelLight, false);

@@ -385,49 +385,57 @@ fn bounding_spheres() {
 
 #[test]
 fn framing_fills_the_view_and_scales_the_light() {
-    use rasterlab::scene::{framed_pose, parse_scene, HANDOUT_POSE};
-    let forward = glam::Vec3::Z;
+    use rasterlab::scene::{framed_view, parse_scene};
+    use rasterlab::{Camera, Light};
+    let looking = Camera::handout(500, 500);
+    let frame = |scene: &rasterlab::scene::Scene| framed_view(scene, &looking);
     assert_eq!(
-        framed_pose(&parse_scene("cornell:2").unwrap(), forward, 500.0, 500, 500).unwrap(),
-        HANDOUT_POSE
+        frame(&parse_scene("cornell:2").unwrap()).unwrap(),
+        (looking, Light::handout())
     );
     // A unit sphere: half the view is atan(250 / 500); the sphere's radius fills
     // 90 % of it.
     let sphere = parse_scene("sphere:960").unwrap();
-    let p = framed_pose(&sphere, forward, 500.0, 500, 500).unwrap();
+    let (p, p_light) = frame(&sphere).unwrap();
     let expected = 1.0 / (0.9 * (0.5f32).atan().sin());
     assert!(
-        (p.camera - glam::Vec3::new(0.0, 0.0, -expected)).length() < 1e-4,
+        (p.position - glam::Vec3::new(0.0, 0.0, -expected)).length() < 1e-4,
         "{p:?}"
     );
     // The same sphere 1000 times larger: everything scales, power by a million.
     let mut big = sphere.clone();
     big.mesh = big.mesh.map_positions(|v| v * 1000.0);
-    let q = framed_pose(&big, forward, 500.0, 500, 500).unwrap();
-    assert!((q.camera / 1000.0 - p.camera).length() < 1e-3, "{q:?}");
-    assert!((q.light / 1000.0 - p.light).length() < 1e-3);
-    assert!((q.light_power / p.light_power / 1e6 - 1.0).abs() < 1e-3);
+    let (q, q_light) = frame(&big).unwrap();
+    assert!((q.position / 1000.0 - p.position).length() < 1e-3, "{q:?}");
+    assert!((q_light.position / 1000.0 - p_light.position).length() < 1e-3);
+    assert!((q_light.power.x / p_light.power.x / 1e6 - 1.0).abs() < 1e-3);
     // A unit sphere and a larger one keep the handout's near plane.
-    assert_eq!((p.near, q.near), (0.01, 0.01));
+    assert_eq!((p.near, q.near), (Some(0.01), Some(0.01)));
     // The same sphere 1000 times smaller: the near plane shrinks with it, so
     // the camera, 1/1000 of the unit sphere's distance away, does not cut it.
     let mut small = sphere.clone();
     small.mesh = small.mesh.map_positions(|v| v / 1000.0);
-    let t = framed_pose(&small, forward, 500.0, 500, 500).unwrap();
-    assert!((t.camera * 1000.0 - p.camera).length() < 1e-3, "{t:?}");
-    assert!(t.near < -t.camera.z - 1e-3, "{t:?}");
+    let (t, _) = frame(&small).unwrap();
+    assert!((t.position * 1000.0 - p.position).length() < 1e-3, "{t:?}");
+    assert!(t.near.unwrap() < -t.position.z - 1e-3, "{t:?}");
+    // Without clipping (--no-clip) the framed camera still does not clip.
+    let unclipped = Camera {
+        near: None,
+        ..looking
+    };
+    assert_eq!(framed_view(&sphere, &unclipped).unwrap().0.near, None);
     // Sizes f32 cannot frame are refused.
     for factor in [1e30f32, 1e-12] {
         let mut odd = sphere.clone();
         odd.mesh = odd.mesh.map_positions(|v| v * factor);
-        let e = framed_pose(&odd, forward, 500.0, 500, 500).unwrap_err();
+        let e = frame(&odd).unwrap_err();
         assert!(e.contains("than f32 can frame"), "{e}");
     }
     // The box's place for the light is inside a closed sphere: the light moves out
     // along the same direction to 0.5 box units (scaled) beyond the sphere.
     let scale = 1.0 / 3f32.sqrt();
     let outside = glam::Vec3::new(0.0, -0.5, -0.7).normalize() * (1.0 + 0.5 * scale);
-    assert!((p.light - outside).length() < 1e-3, "{p:?}");
+    assert!((p_light.position - outside).length() < 1e-3, "{p_light:?}");
     // The box read from its OBJ is a room open towards the camera: the light
     // keeps the box's place, since no wall lies between it and the camera.
     let room = parse_scene(concat!(
@@ -435,9 +443,9 @@ fn framing_fills_the_view_and_scales_the_light() {
         "/docs/models/cornell.obj"
     ))
     .unwrap();
-    let r = framed_pose(&room, forward, 500.0, 500, 500).unwrap();
-    assert_eq!(r.light, HANDOUT_POSE.light);
-    assert_eq!(r.light_power, HANDOUT_POSE.light_power);
+    let (_, r) = frame(&room).unwrap();
+    assert_eq!(r.position, Light::handout().position);
+    assert_eq!(r.power, Light::handout().power);
 }
 
 /// The box written as OBJ by the design notes' rules renders every stage, with

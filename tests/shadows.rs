@@ -30,7 +30,7 @@ fn shadowed(without: &Frame, with: &Frame) -> Vec<bool> {
 #[test]
 fn the_shadow_map_shadows_what_shadow_rays_shadow() {
     let s = Settings::default();
-    let (camera, light) = (s.camera(), s.light());
+    let (camera, light) = (s.camera, s.light);
     let trace = |shadows| {
         let options = Options {
             shadows,
@@ -72,10 +72,10 @@ fn no_shadows_is_the_handouts_figure() {
     assert!(pixel_light(Shadows::Hard, Raster::Rows).to_rgb8() != committed);
     let s = Settings::default();
     assert!(Figure::of(StageName::PixelLight)
-        .shadow_map(&cornell_box(), &s.light(), s.near)
+        .shadow_map(&cornell_box(), &s.light, s.camera.near.unwrap())
         .is_none());
     assert!(Figure::of(StageName::PixelLight)
         .with_shadows(Shadows::Hard)
-        .shadow_map(&cornell_box(), &s.light(), s.near)
+        .shadow_map(&cornell_box(), &s.light, s.camera.near.unwrap())
         .is_some());
 }

@@ -292,7 +292,7 @@ fn the_ragged_seam_is_the_depth_tests_strict_greater_than() {
         ..mesh.clone()
     };
     let s = rasterlab::app::Settings::default();
-    let draw = |m: &Mesh| Figure::of(Depth).render(m, &s.camera(), s.light());
+    let draw = |m: &Mesh| Figure::of(Depth).render(m, &s.camera, s.light);
     let (left, back, both) = (
         draw(&only([2, 3])),
         draw(&only([8, 9])),

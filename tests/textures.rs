@@ -102,8 +102,7 @@ fn bilinear_blends_what_nearest_keeps_apart() {
     let distinct = |filter: Filter| {
         let s = Settings {
             filter,
-            indirect: 1.0,
-            light_power: 0.0,
+            light: only_indirect(),
             ..Settings::default()
         };
         // Only indirect light: each pixel is ρ itself times 1.
@@ -163,8 +162,7 @@ fn a_models_map_kd_is_its_texture() {
         warnings: Vec::new(),
     };
     let s = Settings {
-        indirect: 1.0,
-        light_power: 0.0,
+        light: only_indirect(),
         ..Settings::default()
     };
     let frame = render(Figure::of(StageName::PixelLight), &scene, &s);
@@ -250,7 +248,7 @@ fn the_ray_tracer_reads_the_same_texture() {
         &mesh,
         &s,
     );
-    let (camera, light) = (s.camera(), s.light());
+    let (camera, light) = (s.camera, s.light);
     let traced = raytrace(&mesh, &camera, &light, &Options::default()).frame;
     let plain = raytrace(
         &rasterlab::cornell_box(),
@@ -277,4 +275,13 @@ fn the_ray_tracer_reads_the_same_texture() {
         untextured > 60_000,
         "{untextured}: the texture changes the image"
     );
+}
+
+/// No direct light and an indirect light of 1: each pixel is its ρ.
+fn only_indirect() -> rasterlab::Light {
+    rasterlab::Light {
+        power: glam::Vec3::ZERO,
+        indirect: glam::Vec3::ONE,
+        ..rasterlab::Light::handout()
+    }
 }

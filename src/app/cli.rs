@@ -8,13 +8,14 @@ use crate::app::figure::{Figure, Raster};
 use crate::extensions::depth_of_field::DepthOfField;
 use crate::extensions::shadow::Shadows;
 use crate::extensions::texture::Filter;
+use crate::pipeline::camera::DEFAULT_NEAR;
 use crate::pipeline::draw::Cull;
 use crate::pipeline::raster::Lines;
-use crate::pipeline::StageName;
+use crate::pipeline::{Camera, Light, StageName};
 use crate::scene::texture::{
     apply_normal_map, apply_parallax, apply_texture, parse_normal_map, TextureSpec,
 };
-use crate::scene::{framed_pose, parse_scene, Scene};
+use crate::scene::{framed_view, parse_scene, Scene};
 use clap::{Args, CommandFactory, Parser, Subcommand};
 use glam::Vec3;
 use std::path::PathBuf;
@@ -492,15 +493,29 @@ impl<'a> Parts<'a> {
         }
         let (s, c) = (self.scene, self.camera);
         let light = self.light;
-        let defaults = Settings::default();
-        let mut settings = Settings {
-            width: s.size.0,
-            height: s.size.1,
+        let looking = Camera {
+            yaw: c.yaw.to_radians(),
+            pitch: c.pitch.unwrap_or(scene.pitch).to_radians(),
             focal: s.focal,
-            yaw: c.yaw,
-            pitch: c.pitch.unwrap_or(scene.pitch),
-            indirect: light.map_or(defaults.indirect, |l| l.indirect),
-            clip: !s.no_clip,
+            near: (!s.no_clip).then_some(DEFAULT_NEAR),
+            ..Camera::handout(s.size.0, s.size.1)
+        };
+        let (framed, framed_light) = framed_view(&scene, &looking)?;
+        let (given_light, given_power) = (
+            light.and_then(|l| l.light),
+            light.and_then(|l| l.light_power),
+        );
+        let settings = Settings {
+            camera: Camera {
+                position: c.camera.unwrap_or(framed.position),
+                near: framed.near.map(|near| s.near.unwrap_or(near)),
+                ..framed
+            },
+            light: Light {
+                position: given_light.unwrap_or(framed_light.position),
+                power: given_power.map_or(framed_light.power, Vec3::splat),
+                indirect: light.map_or(framed_light.indirect, |l| Vec3::splat(l.indirect)),
+            },
             threads: self
                 .raster
                 .and_then(|r| r.threads)
@@ -510,33 +525,25 @@ impl<'a> Parts<'a> {
                 _ => Filter::Nearest,
             },
             dof: self.dof,
-            ..defaults
         };
-        let forward = settings.camera().axes()[2];
-        let pose = framed_pose(&scene, forward, s.focal, s.size.0, s.size.1)?;
-        let (given_light, given_power) = (
-            light.and_then(|l| l.light),
-            light.and_then(|l| l.light_power),
-        );
-        settings.camera = c.camera.unwrap_or(pose.camera);
-        settings.light = given_light.unwrap_or(pose.light);
-        settings.light_power = given_power.unwrap_or(pose.light_power);
-        settings.near = s.near.unwrap_or(pose.near);
         let framed = c.camera.is_none()
             || given_light.is_none()
             || given_power.is_none()
             || s.near.is_none();
         if framed && !scene.is_box {
             let v = |v: Vec3| format!("{},{},{}", v.x, v.y, v.z);
+            let (camera, light) = (settings.camera, settings.light);
+            let near = camera
+                .near
+                .map_or("--no-clip".to_string(), |n| format!("--near {n}"));
             eprintln!(
-                "scene {} ({} triangles): --camera {} --pitch {} --light {} --light-power {} --near {}",
+                "scene {} ({} triangles): --camera {} --pitch {} --light {} --light-power {} {near}",
                 scene.name,
                 scene.mesh.faces.len(),
-                v(settings.camera),
-                settings.pitch,
-                v(settings.light),
-                settings.light_power,
-                settings.near
+                v(camera.position),
+                c.pitch.unwrap_or(scene.pitch),
+                v(light.position),
+                light.power.x,
             );
         }
         Ok((scene, settings))

@@ -114,36 +114,39 @@ pub const MAX_PITCH: f32 = 89.0;
 impl Controls {
     /// Applies the keys held during one frame of `dt` seconds.
     pub fn apply_held(&self, held: &[Key], dt: f32, s: &mut Settings) {
-        let forward = s.camera().axes()[2];
+        let forward = s.camera.axes()[2];
         let (step, turn, light) = (
             self.move_speed * dt,
-            self.turn_speed * dt,
+            (self.turn_speed * dt).to_radians(),
             self.light_speed * dt,
         );
+        let (camera, light_at) = (&mut s.camera, &mut s.light.position);
         for key in held {
             match key {
-                Key::Up => s.camera += forward * step,
-                Key::Down => s.camera -= forward * step,
-                Key::Left => s.yaw -= turn,
-                Key::Right => s.yaw += turn,
-                Key::PageUp | Key::Char('r') => s.pitch += turn,
-                Key::PageDown | Key::Char('f') => s.pitch -= turn,
-                Key::Char('w') => s.light += Vec3::Z * light,
-                Key::Char('s') => s.light -= Vec3::Z * light,
-                Key::Char('a') => s.light -= Vec3::X * light,
-                Key::Char('d') => s.light += Vec3::X * light,
-                Key::Char('q') => s.light -= Vec3::Y * light, // y points down
-                Key::Char('e') => s.light += Vec3::Y * light,
+                Key::Up => camera.position += forward * step,
+                Key::Down => camera.position -= forward * step,
+                Key::Left => camera.yaw -= turn,
+                Key::Right => camera.yaw += turn,
+                Key::PageUp | Key::Char('r') => camera.pitch += turn,
+                Key::PageDown | Key::Char('f') => camera.pitch -= turn,
+                Key::Char('w') => *light_at += Vec3::Z * light,
+                Key::Char('s') => *light_at -= Vec3::Z * light,
+                Key::Char('a') => *light_at -= Vec3::X * light,
+                Key::Char('d') => *light_at += Vec3::X * light,
+                Key::Char('q') => *light_at -= Vec3::Y * light, // y points down
+                Key::Char('e') => *light_at += Vec3::Y * light,
                 _ => {}
             }
         }
-        s.pitch = s.pitch.clamp(-MAX_PITCH, MAX_PITCH);
+        let max = MAX_PITCH.to_radians();
+        camera.pitch = camera.pitch.clamp(-max, max);
     }
 
     /// Mouse look: `dx` pixels right turns right, `dy` pixels down looks down.
     pub fn apply_mouse(&self, dx: f32, dy: f32, s: &mut Settings) {
-        s.yaw += dx * self.mouse_degrees;
-        s.pitch = (s.pitch - dy * self.mouse_degrees).clamp(-MAX_PITCH, MAX_PITCH);
+        let (c, max) = (&mut s.camera, MAX_PITCH.to_radians());
+        c.yaw += (dx * self.mouse_degrees).to_radians();
+        c.pitch = (c.pitch - (dy * self.mouse_degrees).to_radians()).clamp(-max, max);
     }
 }
 
@@ -294,10 +297,16 @@ pub fn pressed(now: &[Key], before: &[Key]) -> Vec<Key> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::pipeline::StageName;
+    use crate::pipeline::{Light, StageName};
 
     fn settings() -> Settings {
         Settings::default()
+    }
+
+    /// The camera's yaw and pitch in degrees, to 4 decimals.
+    fn turned(s: &Settings) -> (f32, f32) {
+        let deg = |r: f32| (r.to_degrees() * 1e4).round() / 1e4;
+        (deg(s.camera.yaw), deg(s.camera.pitch))
     }
 
     #[test]
@@ -305,17 +314,17 @@ mod tests {
         let c = Controls::default();
         let mut s = settings();
         c.apply_held(&[Key::Up], 0.5, &mut s);
-        assert_eq!(s.camera, Vec3::new(0.0, 0.0, -3.001 + 0.5));
+        assert_eq!(s.camera.position, Vec3::new(0.0, 0.0, -3.001 + 0.5));
         c.apply_held(&[Key::Right], 0.5, &mut s);
-        assert_eq!(s.yaw, 30.0);
+        assert_eq!(turned(&s).0, 30.0);
         // Facing 90 degrees right, forward is +x.
-        s.yaw = 90.0;
-        let before = s.camera;
+        s.camera.yaw = 90f32.to_radians();
+        let before = s.camera.position;
         c.apply_held(&[Key::Down], 1.0, &mut s);
         assert!(
-            (s.camera - (before - Vec3::X)).length() < 1e-6,
+            (s.camera.position - (before - Vec3::X)).length() < 1e-6,
             "{}",
-            s.camera
+            s.camera.position
         );
     }
 
@@ -327,9 +336,10 @@ mod tests {
             c.apply_held(&[Key::Left, Key::Char('d')], 0.25, &mut a);
         }
         c.apply_held(&[Key::Left, Key::Char('d')], 1.0, &mut b);
-        assert!((a.yaw - b.yaw).abs() < 1e-4 && (a.light - b.light).length() < 1e-6);
-        assert_eq!(b.yaw, -60.0);
-        assert_eq!(b.light, Vec3::new(1.0, -0.5, -0.7));
+        let (la, lb) = (a.light.position, b.light.position);
+        assert!((a.camera.yaw - b.camera.yaw).abs() < 1e-6 && (la - lb).length() < 1e-6);
+        assert_eq!(turned(&b).0, -60.0);
+        assert_eq!(lb, Vec3::new(1.0, -0.5, -0.7));
     }
 
     #[test]
@@ -346,7 +356,7 @@ mod tests {
             let mut s = settings();
             c.apply_held(&[Key::Char(key)], 0.1, &mut s);
             assert!(
-                (s.light - (Settings::default().light + dir * 0.1)).length() < 1e-6,
+                (s.light.position - (Light::handout().position + dir * 0.1)).length() < 1e-6,
                 "{key}"
             );
             assert_eq!(s.camera, Settings::default().camera);
@@ -358,11 +368,11 @@ mod tests {
         let c = Controls::default();
         let mut s = settings();
         c.apply_held(&[Key::PageUp], 1.0, &mut s);
-        assert_eq!(s.pitch, 60.0);
+        assert_eq!(turned(&s).1, 60.0);
         c.apply_held(&[Key::Char('r')], 1.0, &mut s);
-        assert_eq!(s.pitch, MAX_PITCH);
+        assert_eq!(turned(&s).1, MAX_PITCH);
         c.apply_mouse(40.0, 1000.0, &mut s);
-        assert_eq!((s.yaw, s.pitch), (10.0, -MAX_PITCH));
+        assert_eq!(turned(&s), (10.0, -MAX_PITCH));
     }
 
     #[test]

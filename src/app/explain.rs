@@ -603,7 +603,7 @@ pub fn pixels_drawn_twice(
     };
     let mut twice = 0;
     for faces in surfaces.values() {
-        let mut hits = vec![0u8; (settings.width * settings.height) as usize];
+        let mut hits = vec![0u8; (settings.camera.width * settings.camera.height) as usize];
         for &f in faces {
             one.faces.clear();
             one.faces.push(mesh.faces[f]);

@@ -28,32 +28,20 @@ use crate::pipeline::raster::rows::{compute_polygon_rows, Rows};
 use crate::pipeline::raster::Bounds;
 use crate::pipeline::{Camera, Frame, Light, Mesh};
 use crate::scene::Scene;
-use glam::Vec3;
 use image_io::{write_image, write_text, WriteError};
 use overview::figure_one;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 /// Everything a render depends on besides the stage and the scene; the defaults
-/// are the course skeleton's.
+/// are the course skeleton's (`Camera::handout`, `Light::handout`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Settings {
-    pub width: u32,
-    pub height: u32,
-    pub focal: f32,
-    pub camera: Vec3,
-    /// Degrees.
-    pub yaw: f32,
-    /// Degrees.
-    pub pitch: f32,
-    pub light: Vec3,
-    pub light_power: f32,
-    pub indirect: f32,
-    /// Near clipping plane distance.
-    pub near: f32,
-    /// Clip at the near plane and the screen's guard band; false draws as the
-    /// handout does (`--no-clip`).
-    pub clip: bool,
+    /// Where it stands, where it looks, the focal length, the image's size and
+    /// the near plane (`None` draws without clipping, as the handout does:
+    /// `--no-clip`).
+    pub camera: Camera,
+    pub light: Light,
     /// Threads that draw bands of the image (`--threads`); the image is the same
     /// for any number.
     pub threads: usize,
@@ -65,20 +53,9 @@ pub struct Settings {
 
 impl Default for Settings {
     fn default() -> Self {
-        let camera = Camera::handout(500, 500);
-        let light = Light::handout();
         Settings {
-            width: 500,
-            height: 500,
-            focal: camera.focal,
-            camera: camera.position,
-            yaw: 0.0,
-            pitch: 0.0,
-            light: light.position,
-            light_power: light.power.x,
-            indirect: light.indirect.x,
-            near: DEFAULT_NEAR,
-            clip: true,
+            camera: Camera::handout(500, 500),
+            light: Light::handout(),
             threads: 1,
             filter: Filter::Nearest,
             dof: None,
@@ -87,34 +64,14 @@ impl Default for Settings {
 }
 
 impl Settings {
-    pub fn camera(&self) -> Camera {
-        Camera {
-            position: self.camera,
-            yaw: self.yaw.to_radians(),
-            pitch: self.pitch.to_radians(),
-            focal: self.focal,
-            width: self.width,
-            height: self.height,
-            near: self.clip.then_some(self.near),
-        }
-    }
-
-    pub fn light(&self) -> Light {
-        Light {
-            position: self.light,
-            power: Vec3::splat(self.light_power),
-            indirect: Vec3::splat(self.indirect),
-        }
-    }
-
     /// What a frame's stage reads: the light, and the maps of `model` read
     /// with `--filter` from the camera's position.
     pub fn inputs<'a>(&self, model: Model<'a>) -> Inputs<'a> {
         Inputs {
             maps: model.maps,
             filter: self.filter,
-            eye: self.camera,
-            ..Inputs::lit(self.light())
+            eye: self.camera.position,
+            ..Inputs::lit(self.light)
         }
     }
 }
@@ -174,14 +131,15 @@ pub fn draw_frame(
     settings: &Settings,
     frame: &mut Frame,
 ) {
-    let shadow = figure.shadow_map(model.mesh, &settings.light(), settings.near);
+    let near = settings.camera.near.unwrap_or(DEFAULT_NEAR);
+    let shadow = figure.shadow_map(model.mesh, &settings.light, near);
     let inputs = Inputs {
         shadow: shadow.as_ref(),
         ..settings.inputs(model)
     };
-    pipeline.render(&inputs, model.mesh, &settings.camera(), frame);
+    pipeline.render(&inputs, model.mesh, &settings.camera, frame);
     if let Some(dof) = settings.dof {
-        dof.apply(frame, settings.focal);
+        dof.apply(frame, settings.camera.focal);
     }
 }
 
@@ -224,7 +182,7 @@ pub fn render_to_file<'a>(
 /// A frame of the settings' size with a depth buffer, allocated before drawing
 /// so that too large a size is refused with what it needs instead of aborting.
 fn frame_for(settings: &Settings, out: &Path) -> Result<Frame, WriteError> {
-    let (w, h) = (settings.width, settings.height);
+    let (w, h) = (settings.camera.width, settings.camera.height);
     // Colour and depth (4 + 4 bytes a pixel), then the 8-bit rows written (3).
     reserve(out, w, h, 11, "drawing and writing")?;
     Frame::try_new(w, h, true).map_err(|why| WriteError::new(out, why))
@@ -284,7 +242,7 @@ pub fn build_up<'a>(
     let mut pipeline = parallel::Parallel::new(figure, model, settings.threads)
         .or_else(|_| parallel::Parallel::new(figure, model, 1))
         .expect("one band needs no thread");
-    let camera = settings.camera();
+    let camera = settings.camera;
     // One copy of the mesh whose faces grow: no copy of the vertices per frame.
     let mut prefix = Mesh {
         faces: Vec::with_capacity(faces),
@@ -292,7 +250,7 @@ pub fn build_up<'a>(
     };
     let count = faces.div_ceil(per_frame);
     let depth = pipeline.depth_test();
-    let (w, h) = (settings.width, settings.height);
+    let (w, h) = (settings.camera.width, settings.camera.height);
     while prefix.faces.len() < faces {
         let k = (prefix.faces.len() + per_frame).min(faces);
         prefix
@@ -474,12 +432,12 @@ pub fn raytrace_to_file<'a>(
     // The frame (4 bytes a pixel), each pixel's hit (8) and the rows written (3).
     reserve(
         out,
-        settings.width,
-        settings.height,
+        settings.camera.width,
+        settings.camera.height,
         15,
         "ray-tracing and writing",
     )?;
-    let (camera, light) = (settings.camera(), settings.light());
+    let (camera, light) = (settings.camera, settings.light);
     let mut traced = raytrace::raytrace(scene, &camera, &light, options);
     let timing = runs.map(|n| {
         time_runs(n, || {
@@ -511,7 +469,7 @@ pub fn report(
     dir: &Path,
     quick: bool,
     scene: &Scene,
-    pose: &crate::scene::Pose,
+    view: &Settings,
     mut progress: impl FnMut(&str),
 ) -> Result<Vec<PathBuf>, WriteError> {
     let plan = if quick {
@@ -526,9 +484,9 @@ pub fn report(
         .prefix(".rasterlab-")
         .tempfile_in(dir)
         .map_err(|e| WriteError::new(dir, e.to_string()))?;
-    let rows = report::measure_all(&plan, scene, pose, &mut progress);
+    let rows = report::measure_all(&plan, scene, view, &mut progress);
     let size = report::conclusion_size(&plan);
-    let options = report::measure_options(scene, pose, size, plan.runs, &mut progress);
+    let options = report::measure_options(scene, view, size, plan.runs, &mut progress);
     let md = dir.join("report.md");
     let csv = dir.join("report.csv");
     let png = dir.join("error-vs-time.png");
@@ -539,7 +497,7 @@ pub fn report(
     write_text(&csv, &report::csv(&[rows.as_slice(), &options].concat()))?;
     write_image(&report::plot(&rows, &plan), &png)?;
     let mut written = vec![md, csv, png];
-    for (name, picture) in report::heat_maps(&plan, scene, pose) {
+    for (name, picture) in report::heat_maps(&plan, scene, view) {
         let path = dir.join(name);
         write_image(&picture, &path)?;
         written.push(path);

@@ -4,6 +4,7 @@
 
 use crate::app::figure::Figure;
 use crate::app::figure::Inputs;
+use crate::app::Settings;
 use crate::extensions::depth_of_field::DepthOfField;
 use crate::extensions::shadow::Shadows;
 use crate::measure::heat::heat_map_picture;
@@ -14,8 +15,8 @@ use crate::measure::metrics::{
 use crate::measure::raytrace::{raytrace, Options, Shading, Traced};
 use crate::measure::timing::{time_runs, Timing};
 use crate::pipeline::StageName;
-use crate::pipeline::{Camera, Frame, Light, Mesh};
-use crate::scene::{framed_pose, subdivide, Pose, Scene};
+use crate::pipeline::{Camera, Frame, Mesh};
+use crate::scene::{framed_view, subdivide, Scene};
 use std::fmt::Write as _;
 
 /// What one row measures against the reference.
@@ -132,39 +133,36 @@ pub fn measured_figures() -> Vec<Figure> {
 pub const RAYTRACE: &str = "raytrace";
 pub const RAYTRACE_SHADOWS: &str = "raytrace --shadows";
 
-/// The camera of a report at `size`: the pose's, with f scaled with the image so
+/// The camera of a report at `size`: the view's, with f scaled with the image so
 /// the view is the same at every size.
-fn camera_for(size: u32, pose: &Pose) -> Camera {
+fn camera_for(size: u32, view: &Settings) -> Camera {
     Camera {
-        position: pose.camera,
         focal: size as f32,
-        pitch: pose.pitch.to_radians(),
-        near: Some(pose.near),
-        ..Camera::handout(size, size)
+        width: size,
+        height: size,
+        ..view.camera
     }
 }
 
-fn light_for(pose: &Pose) -> Light {
-    Light {
-        position: pose.light,
-        power: glam::Vec3::splat(pose.light_power),
-        ..Light::handout()
-    }
-}
-
-/// The pose a report draws `scene` in: the handout's for the box, framed otherwise
+/// The view a report draws `scene` in: the handout's for the box, framed otherwise
 /// (the same at every size, since f grows with the image).
-pub fn pose_for(scene: &Scene) -> Result<Pose, String> {
+pub fn view_for(scene: &Scene) -> Result<Settings, String> {
     let tilted = Camera {
         pitch: scene.pitch.to_radians(),
+        focal: 1.0,
         ..Camera::handout(1, 1)
     };
-    framed_pose(scene, tilted.axes()[2], 1.0, 1, 1)
+    let (camera, light) = framed_view(scene, &tilted)?;
+    Ok(Settings {
+        camera,
+        light,
+        ..Settings::default()
+    })
 }
 
-fn reference(scene: &Mesh, size: u32, runs: usize, pose: &Pose) -> Reference {
-    let camera = camera_for(size, pose);
-    let light = light_for(pose);
+fn reference(scene: &Mesh, size: u32, runs: usize, view: &Settings) -> Reference {
+    let camera = camera_for(size, view);
+    let light = view.light;
     let lit_options = Options::default();
     let mut lit = raytrace(scene, &camera, &light, &lit_options);
     let timing = time_runs(runs, || {
@@ -234,12 +232,11 @@ fn measure(
 pub fn measure_all(
     plan: &Plan,
     scene: &Scene,
-    pose: &Pose,
+    view: &Settings,
     mut progress: impl FnMut(&str),
 ) -> Vec<Row> {
     let base = &scene.mesh;
-    let pose = *pose;
-    let inputs = Inputs::lit(light_for(&pose));
+    let inputs = Inputs::lit(view.light);
     let plan_ks: &[u32] = if scene.is_box { &plan.ks } else { &[1] };
     let mut rows = Vec::new();
     let mut sizes = plan.sizes.clone();
@@ -254,7 +251,7 @@ pub fn measure_all(
         progress(&format!("[{done:>3}/{total}] {what}: median {ms:.2} ms"));
     };
     for &size in &sizes {
-        let r = reference(base, size, plan.runs, &pose);
+        let r = reference(base, size, plan.runs, view);
         let rt_ms = r.timing.median.as_secs_f64() * 1e3;
         let self_error = image_error(&r.lit.frame, &r.lit.frame, None);
         rows.push(Row {
@@ -299,7 +296,7 @@ pub fn measure_all(
                 split = subdivide(base, k);
                 &split
             };
-            let camera = camera_for(size, &pose);
+            let camera = camera_for(size, view);
             for &view in &figures {
                 let mut pipeline = view.pipeline_for(scene);
                 let mut frame = Frame::default();
@@ -483,10 +480,9 @@ pub fn conclusion_size(plan: &Plan) -> u32 {
 
 /// Where each lit stage differs from the ray tracer, and Figure 7 from Figure 8,
 /// as heat maps at the conclusion size: (file name, picture).
-pub fn heat_maps(plan: &Plan, scene: &Scene, pose: &Pose) -> Vec<(String, Frame)> {
+pub fn heat_maps(plan: &Plan, scene: &Scene, view: &Settings) -> Vec<(String, Frame)> {
     let size = conclusion_size(plan);
-    let pose = *pose;
-    let (mesh, camera, light) = (&scene.mesh, camera_for(size, &pose), light_for(&pose));
+    let (mesh, camera, light) = (&scene.mesh, camera_for(size, view), view.light);
     let reference = raytrace(mesh, &camera, &light, &Options::default()).frame;
     let mut out = Vec::new();
     let lit = measured_figures()
@@ -872,13 +868,13 @@ struct OptionCase {
 /// and its error against the ray tracer given the same option where it has one.
 pub fn measure_options(
     scene: &Scene,
-    pose: &Pose,
+    view: &Settings,
     size: u32,
     runs: usize,
     mut progress: impl FnMut(&str),
 ) -> Vec<Row> {
     use crate::scene::texture::{apply_normal_map, apply_parallax, apply_texture, bumps};
-    let (camera, light) = (camera_for(size, pose), light_for(pose));
+    let (camera, light) = (camera_for(size, view), view.light);
     let pixel_light = Figure::of(StageName::PixelLight);
     let with = |f: &dyn Fn(&mut Scene)| {
         let mut s = scene.clone();

@@ -149,37 +149,60 @@ fn toggled(
     Ok(scene)
 }
 
+/// The angle in degrees that the command line turns back into `radians` exactly
+/// (`--yaw` and `--pitch` are read in degrees): the nearest f32 to it in degrees,
+/// or one a few steps away when that one rounds to a neighbour.
+fn degrees_for(radians: f32) -> f32 {
+    let nearest = radians.to_degrees();
+    let mut candidate = nearest;
+    for _ in 0..8 {
+        if candidate.to_radians() == radians {
+            return candidate;
+        }
+        let step = if candidate.to_radians() < radians {
+            f32::next_up
+        } else {
+            f32::next_down
+        };
+        candidate = step(candidate);
+    }
+    nearest
+}
+
 /// `rasterlab <stage> [--affine] --size .. --camera ..`: every setting, written so
 /// that it parses back to the same f32 values.
 pub fn command_for(view: Figure, s: &Settings) -> String {
     let v = |v: glam::Vec3| format!("{},{},{}", v.x, v.y, v.z);
+    let c = &s.camera;
     let mut command = format!(
         "rasterlab {}{} --size {}x{} --focal {} --camera {} --yaw {} --pitch {}",
         view.stage.name(),
         view.flags(),
-        s.width,
-        s.height,
-        s.focal,
-        v(s.camera),
-        s.yaw,
-        s.pitch,
+        c.width,
+        c.height,
+        c.focal,
+        v(c.position),
+        degrees_for(c.yaw),
+        degrees_for(c.pitch),
     );
     // Only the lit stages take the light (the others refuse options they ignore).
     if view.stage.is_lit() {
         command += &format!(
             " --light {} --light-power {} --indirect {}",
-            v(s.light),
-            s.light_power,
-            s.indirect
+            v(s.light.position),
+            s.light.power.x,
+            s.light.indirect.x
         );
     }
     if let (Some(dof), true) = (s.dof, view.stage.has_depth()) {
         command += &format!(" --dof {},{}", dof.focus, dof.aperture);
     }
-    if !s.clip {
-        command += " --no-clip";
-    } else if s.near != crate::pipeline::camera::DEFAULT_NEAR {
-        command += &format!(" --near {}", s.near);
+    match c.near {
+        None => command += " --no-clip",
+        Some(near) if near != crate::pipeline::camera::DEFAULT_NEAR => {
+            command += &format!(" --near {near}")
+        }
+        Some(_) => {}
     }
     command
 }
@@ -278,8 +301,8 @@ pub fn run(options: Options) -> Result<Summary, String> {
         );
     }
     let (w, h) = (
-        options.settings.width as usize,
-        options.settings.height as usize,
+        options.settings.camera.width as usize,
+        options.settings.camera.height as usize,
     );
     let mut window = minifb::Window::new("rasterlab", w, h, minifb::WindowOptions::default())
         .map_err(|e| {
@@ -481,9 +504,13 @@ mod tests {
 
     #[test]
     fn the_reproducing_command_parses_back_exactly() {
+        use crate::pipeline::Camera;
         let s = Settings {
-            yaw: 1.0 / 3.0,
-            camera: glam::Vec3::new(-0.1, 0.2, -2.9),
+            camera: Camera {
+                yaw: (1.0f32 / 3.0).to_radians(),
+                position: glam::Vec3::new(-0.1, 0.2, -2.9),
+                ..Camera::handout(500, 500)
+            },
             ..Settings::default()
         };
         let view = Figure::with_interpolation(StageName::PixelLight, Some(true));
@@ -494,7 +521,16 @@ mod tests {
         );
         let depth = Figure::of(StageName::Depth);
         assert_eq!(
-            command_for(depth, &Settings { clip: false, ..s }),
+            command_for(
+                depth,
+                &Settings {
+                    camera: Camera {
+                        near: None,
+                        ..s.camera
+                    },
+                    ..s
+                }
+            ),
             "rasterlab depth --size 500x500 --focal 500 --camera -0.1,0.2,-2.9 \
              --yaw 0.33333334 --pitch 0 --no-clip"
         );

@@ -14,7 +14,8 @@ pub use obj::{load_obj, obj_text, read_obj};
 pub use procedural::{grid, sphere};
 
 use crate::extensions::texture::{Maps, Model};
-use crate::pipeline::Mesh;
+use crate::pipeline::camera::DEFAULT_NEAR;
+use crate::pipeline::{Camera, Light, Mesh};
 use glam::Vec3;
 use std::path::Path;
 
@@ -127,27 +128,6 @@ pub fn bounding_sphere(mesh: &Mesh) -> (Vec3, f32) {
     (centre, radius)
 }
 
-/// Where the camera and the light go when the command line does not say.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Pose {
-    pub camera: Vec3,
-    pub light: Vec3,
-    pub light_power: f32,
-    /// The near clipping plane's distance.
-    pub near: f32,
-    /// The tilt the scene is framed for (degrees, positive looks up).
-    pub pitch: f32,
-}
-
-/// The handout's pose: camera (0, 0, -3.001), light (0, -0.5, -0.7), power 1.1.
-pub const HANDOUT_POSE: Pose = Pose {
-    camera: Vec3::new(0.0, 0.0, -3.001),
-    light: Vec3::new(0.0, -0.5, -0.7),
-    light_power: 1.1,
-    near: crate::pipeline::camera::DEFAULT_NEAR,
-    pitch: 0.0,
-};
-
 /// The sizes (bounding-sphere radii) a scene may have to be framed: beyond them
 /// f32 cannot hold what framing computes (the light's power grows with the size
 /// squared, 1/z with the inverse of the distance).
@@ -157,28 +137,33 @@ pub const FRAMED_RADII: (f32, f32) = (1e-9, 1e12);
 /// of a closed model keeps this gap to the model's bounding sphere, scaled.
 const LIGHT_GAP: f32 = 0.5;
 
-/// The pose that frames `scene` for a camera looking along `forward` with focal
-/// length `focal` on a `width` x `height` image. The box keeps the handout's.
-/// Another scene's bounding sphere fills 90 % of the image's shorter side; the
-/// light sits where the box's sits relative to the box, scaled with the scene, and
-/// its power grows with the size squared (eq. 10 falls off as 1/r²), so a model in
-/// millimetres is lit as one in metres. The box's light is inside the room, which
-/// is open towards the camera; inside a closed model it would light only the
-/// model's inside, so when a surface lies between that place and the camera the
-/// light moves out along the same direction from the centre to just outside the
+/// The camera and the light that frame `scene` for `camera` (its direction,
+/// focal length and image size; its position and near plane are replaced). The
+/// box keeps the handout's (`Camera::handout`, `Light::handout`). Another scene's
+/// bounding sphere fills 90 % of the image's shorter side; the light sits where
+/// the box's sits relative to the box, scaled with the scene, and its power grows
+/// with the size squared (eq. 10 falls off as 1/r²), so a model in millimetres is
+/// lit as one in metres. The box's light is inside the room, which is open
+/// towards the camera; inside a closed model it would light only the model's
+/// inside, so when a surface lies between that place and the camera the light
+/// moves out along the same direction from the centre to just outside the
 /// bounding sphere ([`LIGHT_GAP`] from it, scaled). The near plane stays the
-/// handout's 0.01 for a scene 1 unit across (its radius) or larger, and shrinks with a
-/// smaller one, so that a model in millimetres is not cut away whole. A scene
-/// whose size is outside [`FRAMED_RADII`] is refused.
-pub fn framed_pose(
-    scene: &Scene,
-    forward: Vec3,
-    focal: f32,
-    width: u32,
-    height: u32,
-) -> Result<Pose, String> {
+/// handout's 0.01 for a scene 1 unit across (its radius) or larger, and shrinks
+/// with a smaller one, so that a model in millimetres is not cut away whole. A
+/// scene whose size is outside [`FRAMED_RADII`] is refused.
+pub fn framed_view(scene: &Scene, camera: &Camera) -> Result<(Camera, Light), String> {
+    let handout = (
+        Camera::handout(camera.width, camera.height),
+        Light::handout(),
+    );
+    let near = |d: f32| camera.near.map(|_| d);
     if scene.is_box {
-        return Ok(HANDOUT_POSE);
+        let framed = Camera {
+            position: handout.0.position,
+            near: near(DEFAULT_NEAR),
+            ..*camera
+        };
+        return Ok((framed, handout.1));
     }
     let (box_centre, box_radius) = bounding_sphere(&cornell_box());
     let (centre, radius) = bounding_sphere(&scene.mesh);
@@ -196,23 +181,28 @@ pub fn framed_pose(
         ));
     }
     let radius = if radius > 0.0 { radius } else { 1.0 };
-    let half = width.min(height) as f32 / 2.0;
-    let angle = (half / focal).atan();
+    let half = camera.width.min(camera.height) as f32 / 2.0;
+    let angle = (half / camera.focal).atan();
     let distance = radius / (0.9 * angle.sin()).min(1.0);
     let scale = radius / box_radius;
-    let camera = centre - forward.normalize_or(Vec3::Z) * distance;
-    let offset = (HANDOUT_POSE.light - box_centre) * scale;
+    let forward = camera.axes()[2];
+    let position = centre - forward.normalize_or(Vec3::Z) * distance;
+    let offset = (handout.1.position - box_centre) * scale;
     let mut light = centre + offset;
-    if hides(&scene.mesh, light, camera) {
+    if hides(&scene.mesh, light, position) {
         light = centre + offset.normalize() * (radius + LIGHT_GAP * scale);
     }
-    Ok(Pose {
-        camera,
-        light,
-        light_power: HANDOUT_POSE.light_power * scale * scale,
-        near: HANDOUT_POSE.near * radius.min(1.0),
-        pitch: scene.pitch,
-    })
+    let framed = Camera {
+        position,
+        near: near(DEFAULT_NEAR * radius.min(1.0)),
+        ..*camera
+    };
+    let light = Light {
+        position: light,
+        power: handout.1.power * (scale * scale),
+        ..handout.1
+    };
+    Ok((framed, light))
 }
 
 /// Whether a triangle of `mesh` lies on the segment from `light` to `camera`.
