@@ -121,3 +121,81 @@ fn each_page_shows_its_sections_diff() {
         }
     }
 }
+
+/// docs/handout-map.md points at lines of the step programs: "`steps/F.rs`
+/// `function`, lines A-B" must name lines inside that function, and "`code`
+/// (line N)" a line that holds that code. A step program that changes moves the
+/// map's lines with it, or this fails.
+#[test]
+fn the_handout_maps_step_lines_are_where_it_says() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let map = std::fs::read_to_string(root.join("docs/handout-map.md")).unwrap();
+    let read = |file: &str| -> Vec<String> {
+        let text = std::fs::read_to_string(root.join(file)).expect(file);
+        text.lines().map(str::to_owned).collect()
+    };
+    let mut checked = 0;
+    // The first table's rows: | handout | section | step | rasterlab | file |
+    for row in map
+        .lines()
+        .filter(|l| l.starts_with('|') && l.matches(" | ").count() == 4)
+    {
+        let step_cell = row.split(" | ").nth(2).unwrap_or("");
+        // One program per cell part, split where the next program is named.
+        for part in step_cell
+            .split("; `steps/")
+            .map(|p| p.trim_start_matches("`steps/"))
+        {
+            let Some((file, rest)) = part.split_once(".rs`") else {
+                continue;
+            };
+            if !file.chars().all(|c| c.is_ascii_alphanumeric() || c == '-') {
+                continue;
+            }
+            let file = file.rsplit("steps/").next().unwrap();
+            let lines = read(&format!("steps/{file}.rs"));
+            // "`function`, lines A-B"
+            if let Some((before, range)) = rest.split_once(", lines ") {
+                let function = before.trim().trim_matches('`');
+                let range: String = range
+                    .chars()
+                    .take_while(|c| c.is_ascii_digit() || *c == '-')
+                    .collect();
+                let (a, b) = range.split_once('-').unwrap();
+                let (a, b): (usize, usize) = (a.parse().unwrap(), b.parse().unwrap());
+                let start = lines[..a - 1]
+                    .iter()
+                    .rposition(|l| l.starts_with("fn ") || l.starts_with("pub fn "))
+                    .unwrap();
+                assert!(
+                    lines[start].contains(&format!("fn {function}(")),
+                    "docs/handout-map.md: steps/{file}.rs lines {a}-{b} are in `{}`, not `{function}`",
+                    lines[start]
+                );
+                assert!(
+                    !lines[a..b].iter().any(|l| l.starts_with('}')),
+                    "docs/handout-map.md: steps/{file}.rs lines {a}-{b} leave `{function}`"
+                );
+                checked += 1;
+            }
+            // "`code` (line N)"
+            let mut rest = rest;
+            while let Some(at) = rest.find(" (line ") {
+                let code = rest[..at].trim_end().rsplit('`').nth(1).unwrap();
+                let n: String = rest[at + 7..]
+                    .chars()
+                    .take_while(char::is_ascii_digit)
+                    .collect();
+                let n: usize = n.parse().unwrap();
+                assert!(
+                    lines[n - 1].contains(code),
+                    "docs/handout-map.md: steps/{file}.rs line {n} is `{}`, without `{code}`",
+                    lines[n - 1].trim()
+                );
+                checked += 1;
+                rest = &rest[at + 7..];
+            }
+        }
+    }
+    assert_eq!(checked, 5, "the map's line references found");
+}
