@@ -58,10 +58,6 @@ fn check(a: &CheckArgs) -> Result<(), Failure> {
             false => Err(Failure::Differs),
         };
     }
-    let image = a
-        .image
-        .as_ref()
-        .expect("clap requires IMAGE without a subcommand");
     let options = check::CheckOptions {
         stage: a.stage,
         size: a.size,
@@ -75,6 +71,41 @@ fn check(a: &CheckArgs) -> Result<(), Failure> {
         fit_light: a.fit_light,
         out: a.out.clone(),
     };
+    let single = match a.images.as_slice() {
+        [one] if !one.is_dir() => Some(one),
+        _ => None,
+    };
+    let Some(image) = single else {
+        let files = check::submission_files(&a.images).map_err(failure)?;
+        if files.is_empty() {
+            let names: Vec<String> = a.images.iter().map(|p| p.display().to_string()).collect();
+            return Err(Failure::Trouble(format!(
+                "no files to check in {}",
+                names.join(", ")
+            )));
+        }
+        let checks = check::check_files(&files, &options, app::parallel::cores());
+        match a.json {
+            true => print_out(&check::files_json(&checks))?,
+            false => print_out(&check::files_text(&checks))?,
+        }
+        if let Some(csv) = &a.csv {
+            app::image_io::write_text(csv, &check::files_csv(&checks))?;
+            eprintln!("wrote {}", csv.display());
+        }
+        for path in checks.iter().flat_map(|c| &c.written) {
+            eprintln!("wrote {}", path.display());
+        }
+        return match checks.iter().all(|c| c.status == check::Status::Matches) {
+            true => Ok(()),
+            false => Err(Failure::Differs),
+        };
+    };
+    if a.csv.is_some() {
+        return Err(Failure::Usage(
+            "--csv writes the table of several files or a folder; give it those".into(),
+        ));
+    }
     let (result, written) = check::check_image_file(image, &options).map_err(failure)?;
     let name = image.display().to_string();
     match a.json {

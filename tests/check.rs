@@ -1362,3 +1362,131 @@ fn a_lit_stage_asked_for_on_an_unlit_image_is_contradicted() {
     let o = rasterlab(&["check", shot.to_str().unwrap()]);
     assert_eq!(o.status.code(), Some(0));
 }
+
+/// A teacher's folder: a right figure, a wrong one, a broken file and a picture
+/// that is not the lab give four rows, in name order, and exit 1; the CSV and the
+/// JSON lines say the same, and two students' `shot.png` get heat maps of their
+/// own.
+#[test]
+fn a_folder_gives_one_row_per_file_and_exit_1() {
+    use rasterlab::app::{self as app, image_io::write_image, Settings};
+    use rasterlab::{Figure, StageName};
+    let dir = temp_dir("check-folder");
+    let subs = dir.join("subs");
+    for name in ["anna", "bo", "cy", "dee"] {
+        std::fs::create_dir_all(subs.join(name)).unwrap();
+    }
+    let box_ = cornell_box();
+    let (right, _) = app::render(
+        Figure::of(StageName::Depth),
+        &box_,
+        &Settings::default(),
+        None,
+    );
+    write_image(&right, &subs.join("anna/shot.png")).unwrap();
+    // Figure 7 with the light twice as strong: a lab 3 image, not the handout's.
+    let bright = Settings {
+        light: rasterlab::Light {
+            power: Vec3::splat(2.2),
+            ..rasterlab::Light::handout()
+        },
+        ..Settings::default()
+    };
+    let (wrong, _) = app::render(Figure::of(StageName::PixelLight), &box_, &bright, None);
+    write_image(&wrong, &subs.join("bo/shot.png")).unwrap();
+    std::fs::write(subs.join("cy/shot.png"), "not a picture").unwrap();
+    // Noise, like a photo: no stage explains it.
+    let mut noise = Frame::new(300, 200);
+    let mut x = 12345u32;
+    for c in &mut noise.color {
+        x ^= x << 13;
+        x ^= x >> 17;
+        x ^= x << 5;
+        *c = x & 0x00ff_ffff;
+    }
+    write_image(&noise, &subs.join("dee/photo.png")).unwrap();
+    // Hidden files are not submissions.
+    std::fs::write(subs.join(".DS_Store"), "x").unwrap();
+    let (csv, heat) = (dir.join("table.csv"), dir.join("heat"));
+    let s = |p: &std::path::Path| p.display().to_string();
+    let o = rasterlab(&["check", &s(&subs), "--csv", &s(&csv), "--out", &s(&heat)]);
+    assert_eq!(
+        o.status.code(),
+        Some(1),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let out = String::from_utf8(o.stdout).unwrap();
+    let rows: Vec<Vec<&str>> = out.lines().map(|l| l.split('\t').collect()).collect();
+    let status: Vec<(&str, &str)> = rows[..4].iter().map(|r| (r[0], r[1])).collect();
+    let file = |f: &str| s(&subs.join(f));
+    let (a, b, c, d) = (
+        file("anna/shot.png"),
+        file("bo/shot.png"),
+        file("cy/shot.png"),
+        file("dee/photo.png"),
+    );
+    assert_eq!(
+        status,
+        [
+            (&*a, "matches"),
+            (&*b, "differs"),
+            (&*c, "unreadable"),
+            (&*d, "not-lab3")
+        ]
+    );
+    assert!(
+        rows[1][2].contains("Figure 7 (light per pixel) at light power 2.2"),
+        "{out}"
+    );
+    assert!(rows[2][2].starts_with(&format!("cannot read {c}")), "{out}");
+    assert_eq!(
+        rows[4],
+        ["4 files: matches 1, differs 1, not-lab3 1, unreadable 1"]
+    );
+    let table = std::fs::read_to_string(&csv).unwrap();
+    let lines: Vec<&str> = table.lines().collect();
+    assert_eq!(
+        lines[0],
+        "file,status,figure,stage,light_power,indirect,variants,summary"
+    );
+    let starts = [
+        format!("{a},matches,5,depth,"),
+        format!("{b},differs,7,pixel-light,2.2,0.5,"),
+        format!("{c},unreadable,,,,,,"),
+        format!("{d},not-lab3,,,,,,"),
+    ];
+    for (line, start) in lines[1..].iter().zip(&starts) {
+        assert!(line.starts_with(start), "{table}");
+    }
+    assert_eq!(lines.len(), 5);
+    for name in [
+        "anna_shot-heat.png",
+        "bo_shot-heat.png",
+        "dee_photo-heat.png",
+    ] {
+        assert!(heat.join(name).is_file(), "{name}");
+    }
+    let o = rasterlab(&["check", &a, &c, "--json"]);
+    assert_eq!(o.status.code(), Some(1));
+    let json = String::from_utf8(o.stdout).unwrap();
+    let lines: Vec<&str> = json.lines().collect();
+    assert_eq!(lines.len(), 2);
+    assert!(lines[0].starts_with(&format!(
+        "{{\"file\":\"{a}\",\"status\":\"matches\",\"image\":"
+    )));
+    assert!(lines[1].starts_with(&format!(
+        "{{\"file\":\"{c}\",\"status\":\"unreadable\",\"error\":\"cannot read"
+    )));
+    // The right one alone: exit 0; an empty folder is trouble (2).
+    assert_eq!(
+        rasterlab(&["check", &s(&subs.join("anna"))]).status.code(),
+        Some(0)
+    );
+    std::fs::create_dir_all(dir.join("empty")).unwrap();
+    one_line_error(
+        &["check", &s(&dir.join("empty"))],
+        2,
+        &format!("error: no files to check in {}", s(&dir.join("empty"))),
+    );
+}

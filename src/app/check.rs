@@ -94,6 +94,18 @@ pub fn check_image_file(
     path: &Path,
     options: &CheckOptions,
 ) -> Result<(ImageCheck, Vec<PathBuf>), CheckError> {
+    let stem = path
+        .file_stem()
+        .map_or("image".into(), |s| s.to_string_lossy().into_owned());
+    check_image_named(path, &stem, options)
+}
+
+/// [`check_image_file`], with the files written named after `stem`.
+fn check_image_named(
+    path: &Path,
+    stem: &str,
+    options: &CheckOptions,
+) -> Result<(ImageCheck, Vec<PathBuf>), CheckError> {
     let mut observed = read_screenshot(path).map_err(CheckError::Run)?;
     // A window screenshot: the render inside it, unless the command line fixes
     // the size or the camera (then the image is taken as it is).
@@ -215,9 +227,6 @@ pub fn check_image_file(
     let mut written = Vec::new();
     if let Some(dir) = &options.out {
         crate::app::create_folder(dir)?;
-        let stem = path
-            .file_stem()
-            .map_or("image".into(), |s| s.to_string_lossy().into_owned());
         let title = match &check.fitted {
             Some(f) => format!("{stem} against Figure {} as fitted", f.hypothesis.figure()),
             None => format!("{stem}: not a lab 3 image; the closest stage"),
@@ -258,4 +267,283 @@ pub fn check_rows_file(path: &Path, vertices: &[(i32, i32)]) -> Result<RowsCheck
         skipped,
         ..check_rows(vertices, rows)
     })
+}
+
+/// What `check` made of one file of a folder or a list.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Status {
+    /// The handout's figure within 2/255 at every pixel.
+    Matches,
+    /// A lab 3 image that differs from the handout's figure.
+    Differs,
+    /// Not an image of the lab.
+    NotLab3,
+    /// Not read: not an image, too large, a folder, a link to nothing.
+    Unreadable,
+}
+
+impl Status {
+    /// The word the table, the CSV and the JSON use.
+    pub fn name(self) -> &'static str {
+        match self {
+            Status::Matches => "matches",
+            Status::Differs => "differs",
+            Status::NotLab3 => "not-lab3",
+            Status::Unreadable => "unreadable",
+        }
+    }
+}
+
+/// One file checked: its status, the report (for an image that was read) or
+/// why it was not read, and the files written for it.
+#[derive(Debug)]
+pub struct FileCheck {
+    pub file: PathBuf,
+    pub status: Status,
+    pub check: Option<ImageCheck>,
+    pub error: Option<String>,
+    pub written: Vec<PathBuf>,
+}
+
+impl FileCheck {
+    /// The report's first sentence, or why the file was not read.
+    pub fn summary(&self) -> String {
+        if let Some(e) = &self.error {
+            return e.clone();
+        }
+        let name = self.file.display().to_string();
+        let text = self
+            .check
+            .as_ref()
+            .map(|c| c.text(&name))
+            .unwrap_or_default();
+        let first = text
+            .lines()
+            .find(|l| !l.starts_with("Note: ") && !l.is_empty());
+        first.unwrap_or("").to_string()
+    }
+}
+
+/// The most files one `check` reads from its folders: a course has hundreds
+/// of submissions, not millions.
+pub const MAX_CHECK_FILES: usize = 100_000;
+
+/// How deep `check` looks into folders (a submission per folder, with some
+/// folders inside).
+const MAX_CHECK_DEPTH: usize = 16;
+
+/// The files `check` is given: each FILE as it is, and each folder's files
+/// (hidden ones left out), recursively, in name order. A link is listed, not
+/// followed into a folder, so no loop is walked.
+pub fn submission_files(inputs: &[PathBuf]) -> Result<Vec<PathBuf>, CheckError> {
+    fn walk(dir: &Path, depth: usize, out: &mut Vec<PathBuf>) -> Result<(), CheckError> {
+        let read = std::fs::read_dir(dir).map_err(|e| {
+            CheckError::Run(format!("cannot read the folder {}: {e}", dir.display()))
+        })?;
+        let mut entries: Vec<(PathBuf, bool)> = Vec::new();
+        for entry in read {
+            let entry = entry.map_err(|e| {
+                CheckError::Run(format!("cannot read the folder {}: {e}", dir.display()))
+            })?;
+            if entry.file_name().to_string_lossy().starts_with('.') {
+                continue;
+            }
+            let is_dir = entry.file_type().is_ok_and(|t| t.is_dir());
+            entries.push((entry.path(), is_dir));
+            if out.len() + entries.len() > MAX_CHECK_FILES {
+                return Err(CheckError::Run(format!(
+                    "more than {MAX_CHECK_FILES} files under {}: check fewer at a time",
+                    dir.display()
+                )));
+            }
+        }
+        entries.sort();
+        for (path, is_dir) in entries {
+            match is_dir {
+                true if depth < MAX_CHECK_DEPTH => walk(&path, depth + 1, out)?,
+                true => {}
+                false => out.push(path),
+            }
+        }
+        Ok(())
+    }
+    let mut files = Vec::new();
+    for input in inputs {
+        // symlink_metadata: a link to a folder is checked as the file it is.
+        match std::fs::symlink_metadata(input) {
+            Ok(m) if m.is_dir() => walk(input, 0, &mut files)?,
+            _ => files.push(input.clone()),
+        }
+    }
+    Ok(files)
+}
+
+/// Checks every file, on `threads` threads, in order: one [`FileCheck`] each,
+/// whatever happens to the others. With `options.out`, each image's heat map is
+/// named after its path (`a/shot.png` gives `a_shot-heat.png`), so two
+/// students' `shot.png` do not overwrite each other.
+pub fn check_files(files: &[PathBuf], options: &CheckOptions, threads: usize) -> Vec<FileCheck> {
+    use rayon::prelude::*;
+    let common = common_folder(files);
+    let one = |file: &PathBuf| {
+        let name = heat_name(file, &common);
+        match check_image_named(file, &name, options) {
+            Ok((check, written)) => FileCheck {
+                status: if check.is_handouts_figure(options.stage) {
+                    Status::Matches
+                } else if check.fitted.is_some() {
+                    Status::Differs
+                } else {
+                    Status::NotLab3
+                },
+                file: file.clone(),
+                check: Some(check),
+                error: None,
+                written,
+            },
+            Err(CheckError::Usage(e) | CheckError::Run(e)) => FileCheck {
+                file: file.clone(),
+                status: Status::Unreadable,
+                check: None,
+                error: Some(e),
+                written: Vec::new(),
+            },
+        }
+    };
+    match rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.max(1))
+        .build()
+    {
+        Ok(pool) => pool.install(|| files.par_iter().map(one).collect()),
+        Err(_) => files.iter().map(one).collect(),
+    }
+}
+
+/// The folder every file is in, so that names are told apart by what follows.
+fn common_folder(files: &[PathBuf]) -> PathBuf {
+    let mut common: Option<PathBuf> = None;
+    for f in files {
+        let parent = f.parent().unwrap_or(Path::new("")).to_path_buf();
+        common = Some(match common {
+            None => parent,
+            Some(c) => c
+                .components()
+                .zip(parent.components())
+                .take_while(|(a, b)| a == b)
+                .map(|(a, _)| a)
+                .collect(),
+        });
+    }
+    common.unwrap_or_default()
+}
+
+/// `file`'s path below `common`, without its extension, with `_` for each
+/// folder separator.
+fn heat_name(file: &Path, common: &Path) -> String {
+    let inner = file.strip_prefix(common).unwrap_or(file).with_extension("");
+    let parts: Vec<String> = inner
+        .components()
+        .map(|c| c.as_os_str().to_string_lossy().into_owned())
+        .collect();
+    match parts.join("_") {
+        name if name.is_empty() => "image".to_string(),
+        name => name,
+    }
+}
+
+/// One row per file, tab-separated: its path, its status and the report's first
+/// sentence; then the count of each status.
+pub fn files_text(checks: &[FileCheck]) -> String {
+    let mut out = String::new();
+    for c in checks {
+        out.push_str(&format!(
+            "{}\t{}\t{}\n",
+            c.file.display(),
+            c.status.name(),
+            c.summary()
+        ));
+    }
+    let count = |s: Status| checks.iter().filter(|c| c.status == s).count();
+    out.push_str(&format!(
+        "{} files: matches {}, differs {}, not-lab3 {}, unreadable {}\n",
+        checks.len(),
+        count(Status::Matches),
+        count(Status::Differs),
+        count(Status::NotLab3),
+        count(Status::Unreadable)
+    ));
+    out
+}
+
+/// One JSON object per line per file: `file` and `status`, then the report's
+/// fields (or `error` for a file that was not read).
+pub fn files_json(checks: &[FileCheck]) -> String {
+    use crate::measure::check::report::json_string;
+    let mut out = String::new();
+    for c in checks {
+        let head = format!(
+            "{{\"file\":{},\"status\":{}",
+            json_string(&c.file.display().to_string()),
+            json_string(c.status.name())
+        );
+        match (&c.check, &c.error) {
+            (Some(check), _) => {
+                let report = check.json(&c.file.display().to_string());
+                out.push_str(&format!("{head},{}\n", &report[1..]));
+            }
+            (None, error) => out.push_str(&format!(
+                "{head},\"error\":{}}}\n",
+                json_string(error.as_deref().unwrap_or(""))
+            )),
+        }
+    }
+    out
+}
+
+/// The table as CSV (RFC 4180): file, status, figure, stage, light power,
+/// indirect light, variants and the report's first sentence.
+pub fn files_csv(checks: &[FileCheck]) -> String {
+    let cell = |s: &str| match s.contains([',', '"', '\n', '\r']) {
+        true => format!("\"{}\"", s.replace('"', "\"\"")),
+        false => s.to_string(),
+    };
+    let mut out = String::from("file,status,figure,stage,light_power,indirect,variants,summary\n");
+    for c in checks {
+        let fitted = c.check.as_ref().and_then(|k| k.fitted.as_ref());
+        let (figure, stage, power, indirect, variants) = match fitted {
+            Some(f) => {
+                let lit = f.hypothesis.lit();
+                let three = |v: f32| crate::measure::check::report::three_digits(v);
+                (
+                    f.hypothesis.figure().to_string(),
+                    f.hypothesis.stage.name().to_string(),
+                    if lit {
+                        three(f.shading.power)
+                    } else {
+                        String::new()
+                    },
+                    if lit {
+                        three(f.shading.indirect)
+                    } else {
+                        String::new()
+                    },
+                    f.variants().join(" "),
+                )
+            }
+            None => Default::default(),
+        };
+        let row = [
+            cell(&c.file.display().to_string()),
+            c.status.name().to_string(),
+            figure,
+            stage,
+            power,
+            indirect,
+            cell(&variants),
+            cell(&c.summary()),
+        ];
+        out.push_str(&row.join(","));
+        out.push('\n');
+    }
+    out
 }

@@ -88,13 +88,15 @@ pub enum Command {
     /// still differs.
     ///
     /// `rasterlab check shot.png` reads a PNG or BMP of any size; `rasterlab check
-    /// rows FILE 10,5 5,10 15,15` compares a printed ComputePolygonRows output
-    /// instead. docs/check.md shows a report.
+    /// submissions/` (or several files) checks every file, in parallel, one row
+    /// each; `rasterlab check rows FILE 10,5 5,10 15,15` compares a printed
+    /// ComputePolygonRows output instead. docs/check.md shows a report.
     ///
-    /// Exit status, as diff and cmp: 0 when the image is the handout's figure
-    /// within 2/255 at every pixel (or the rows are the handout's), 1 when it
-    /// differs or is not a lab 3 image, 2 for trouble (bad usage, an input that
-    /// cannot be read, an output that cannot be written).
+    /// Exit status, as diff and cmp: 0 when every image is the handout's figure
+    /// within 2/255 at every pixel (or the rows are the handout's), 1 when any
+    /// differs or is not a lab 3 image (in a folder or a list, also when a file
+    /// cannot be read: it is a row of its own), 2 for trouble (bad usage, the one
+    /// input given cannot be read, an output that cannot be written).
     Check(CheckArgs),
 }
 
@@ -903,9 +905,13 @@ pub struct CheckArgs {
     #[command(subcommand)]
     pub rows: Option<CheckRows>,
     /// The screenshot: a PNG or BMP of any size (the size sets the camera's
-    /// screen; the focal length is the height unless --focal gives it).
-    #[arg(value_name = "IMAGE", required = true)]
-    pub image: Option<PathBuf>,
+    /// screen; the focal length is the height unless --focal gives it). Several
+    /// files, or folders (every file in them, recursively), give one row each.
+    #[arg(value_name = "IMAGE|DIR", required = true, num_args = 1..)]
+    pub images: Vec<PathBuf>,
+    /// With several files or a folder: also write the table as CSV to FILE.
+    #[arg(long, value_name = "FILE")]
+    pub csv: Option<PathBuf>,
     /// The stage the image shows [default: found from the image]: points,
     /// wireframe, filled, depth, vertex-light, pixel-light.
     #[arg(long, value_name = "STAGE", value_parser = parse::stage)]
@@ -943,7 +949,8 @@ pub struct CheckArgs {
     /// explanation) and IMAGE-expected.png (that explanation), created if missing.
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
-    /// Print the report as one JSON object instead of words.
+    /// Print the report as one JSON object instead of words (with several files,
+    /// one object per line, each with `file` and `status`).
     #[arg(long)]
     pub json: bool,
 }

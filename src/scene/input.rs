@@ -93,11 +93,14 @@ pub fn read_image(path: &Path, limit: ImageLimit) -> Result<image::DynamicImage,
 
 /// An image's width and height, from its header alone.
 pub fn image_size(path: &Path) -> Result<(u32, u32), String> {
-    image::ImageReader::new(BufReader::new(open_regular(path)?))
+    let reader = image::ImageReader::new(BufReader::new(open_regular(path)?))
         .with_guessed_format()
-        .map_err(|e| format!("cannot read: {e}"))?
-        .into_dimensions()
-        .map_err(|e| e.to_string())
+        .map_err(|e| format!("cannot read: {e}"))?;
+    if reader.format().is_none() {
+        // What a JPEG, a text file or a truncated header gets.
+        return Err("not a PNG, BMP or GIF image (its first bytes are none of those)".into());
+    }
+    reader.into_dimensions().map_err(|e| e.to_string())
 }
 
 #[cfg(test)]
