@@ -1096,20 +1096,23 @@ fn swapped_channels_other_focal_lengths_and_pasted_rows_are_explained() {
     let (small, _) = app::render(Figure::of(StageName::Depth), &cornell_box(), &small, None);
     write_image(&small, &dir.join("small.png")).unwrap();
     write_image(&Frame::new(500, 500), &dir.join("black.png")).unwrap();
-    for (name, note) in [
+    for (name, note, code) in [
         (
             "swapped.png",
             "Note: red and blue are swapped in this image",
+            1,
         ),
         (
             "small.png",
             "Note: checked with focal length 500, rasterlab's default, not the image's height 250",
+            0,
         ),
     ] {
         let o = rasterlab(&["check", dir.join(name).to_str().unwrap()]);
         let text = String::from_utf8_lossy(&o.stdout);
-        // Explained, and the handout's figure once the slip is undone.
-        assert_eq!(o.status.code(), Some(0), "{name}: {text}");
+        // Explained: the swap is the program's slip (1), the focal length a
+        // choice that draws the handout's figure at that size (0).
+        assert_eq!(o.status.code(), Some(code), "{name}: {text}");
         let lines: Vec<&str> = text.lines().collect();
         assert!(lines[0].starts_with(note), "{name}: {text}");
         assert!(
@@ -1489,4 +1492,96 @@ fn a_folder_gives_one_row_per_file_and_exit_1() {
         2,
         &format!("error: no files to check in {}", s(&dir.join("empty"))),
     );
+}
+
+/// The slips seen in public solutions, each named: the image upside down, a
+/// gamma applied, the camera at z = -3, π coded as 3, the reflectance
+/// multiplied in twice.
+#[test]
+fn known_slips_are_named() {
+    use rasterlab::app::check::{check_image_file, CheckOptions};
+    use rasterlab::app::{self as app, image_io::write_image, Settings};
+    use rasterlab::{Camera, Figure, Light, StageName};
+    let dir = temp_dir("check-slips");
+    let box_ = cornell_box();
+    let draw = |stage: StageName, mesh: &rasterlab::Mesh, s: &Settings| {
+        app::render(Figure::of(stage), mesh, s, None).0
+    };
+    let handout = Settings::default();
+    let depth = draw(StageName::Depth, &box_, &handout);
+    let lit = draw(StageName::PixelLight, &box_, &handout);
+    let mut flipped = depth.clone();
+    for (row, source) in flipped
+        .color
+        .chunks_mut(500)
+        .zip(depth.color.chunks(500).rev())
+    {
+        row.copy_from_slice(source);
+    }
+    let mut gamma = lit.clone();
+    for c in &mut gamma.color {
+        let ch = |shift: u32| {
+            let v = (*c >> shift & 0xff) as f64 / 255.0;
+            ((255.0 * v.powf(1.0 / 2.2)).round() as u32) << shift
+        };
+        *c = ch(16) | ch(8) | ch(0);
+    }
+    let at_3 = Settings {
+        camera: Camera {
+            position: Vec3::new(0.0, 0.0, -3.0),
+            ..Camera::handout(500, 500)
+        },
+        ..Settings::default()
+    };
+    let z3 = draw(StageName::Depth, &box_, &at_3);
+    // π as 3 in eq. 10 is the handout's light made π/3 times stronger.
+    let pi_3 = Settings {
+        light: Light {
+            power: Vec3::splat(1.1 * std::f32::consts::PI / 3.0),
+            ..Light::handout()
+        },
+        ..Settings::default()
+    };
+    let pi3 = draw(StageName::PixelLight, &box_, &pi_3);
+    // ρ twice: the box with every material's colour squared, lit as the handout.
+    let mut squared = box_.clone();
+    for m in &mut squared.materials {
+        m.color *= m.color;
+    }
+    let rho2 = draw(StageName::PixelLight, &squared, &handout);
+    for (name, frame, figure, note, variant) in [
+        ("flipped", flipped, 5, Some("upside down"), None),
+        ("gamma", gamma, 7, Some("a gamma of 2.2"), None),
+        ("z3", z3, 5, Some("the camera is at z = -3"), None),
+        ("pi3", pi3, 7, None, Some("pi-3")),
+        ("rho2", rho2, 7, None, Some("rho-squared")),
+    ] {
+        let shot = dir.join(format!("{name}.png"));
+        write_image(&frame, &shot).unwrap();
+        let (check, _) = check_image_file(&shot, &CheckOptions::default()).unwrap();
+        let f = check
+            .fitted
+            .as_ref()
+            .unwrap_or_else(|| panic!("{name}: not explained"));
+        assert_eq!(f.hypothesis.figure(), figure, "{name}");
+        if let Some(note) = note {
+            assert!(
+                check.notes.iter().any(|n| n.contains(note)),
+                "{name}: {:?}",
+                check.notes
+            );
+        }
+        assert_eq!(
+            f.variants(),
+            variant.into_iter().collect::<Vec<_>>(),
+            "{name}"
+        );
+        assert!(
+            matches!(check.remaining.summary(), "none" | "edges"),
+            "{name}: {}",
+            check.text(name)
+        );
+        // Not the handout's figure itself: exit 1.
+        assert!(!check.is_handouts_figure(None), "{name}");
+    }
 }

@@ -20,6 +20,7 @@ pub(super) fn fit_light(
     m: &Measured,
     observed: &Frame,
     truncated: bool,
+    rho_squared: bool,
     power: Option<f32>,
     indirect: Option<f32>,
     stride: usize,
@@ -34,7 +35,8 @@ pub(super) fn fit_light(
             if !m.interior[i] || s == NONE {
                 continue;
             }
-            let rho = m.surfaces[s as usize].0.to_array();
+            let rho = m.surfaces[s as usize].0;
+            let rho = if rho_squared { rho * rho } else { rho }.to_array();
             let o = unpack(observed.color[i]);
             for k in 0..3 {
                 if o[k] == 0 || o[k] == 255 {
@@ -112,13 +114,23 @@ pub(super) fn best_shading(
         return (s, errors(m, observed, false, s));
     }
     let mut best: Option<(Shading, Errors)> = None;
-    for truncated in [false, true] {
-        let (p, n) = fit_light(m, observed, truncated, setup.power, setup.indirect, 1);
+    // The plainest first: each later one must match clearly more pixels.
+    for (rho_squared, truncated) in [(false, false), (false, true), (true, false), (true, true)] {
+        let (p, n) = fit_light(
+            m,
+            observed,
+            truncated,
+            rho_squared,
+            setup.power,
+            setup.indirect,
+            1,
+        );
         let fitted = Shading {
             power: p,
             indirect: n,
-            pi_314: false,
+            rho_squared,
             truncated,
+            ..Shading::handout()
         };
         let fitted_errors = errors(m, observed, true, fitted);
         let interior = m.interior.iter().filter(|&&b| b).count();
@@ -128,17 +140,20 @@ pub(super) fn best_shading(
         let slack = (interior / 2000).max(3);
         let mut chosen = (fitted, fitted_errors);
         let mut candidates = Vec::new();
-        let scale_pi = PI_314 / std::f32::consts::PI;
         let nice_n = setup.indirect.unwrap_or(round_to(n, 2));
         let nice = |v: f32, decimals| setup.power.unwrap_or(round_to(v, decimals));
-        for (pi_314, decimals) in [(true, 2), (true, 1), (false, 2), (false, 1)] {
-            let power = if pi_314 { p * scale_pi } else { p };
-            candidates.push(Shading {
-                power: nice(power, decimals),
-                indirect: nice_n,
-                pi_314,
-                truncated,
-            });
+        for pi in [3.0, PI_314, std::f32::consts::PI] {
+            // The power that gives the same light with π coded as `pi`.
+            let power = p * pi / std::f32::consts::PI;
+            for decimals in [2, 1] {
+                candidates.push(Shading {
+                    power: nice(power, decimals),
+                    indirect: nice_n,
+                    pi,
+                    rho_squared,
+                    truncated,
+                });
+            }
         }
         // Later candidates are plainer; each one wins if it matches as many pixels.
         let mut best_exact = fitted_errors.exact;
@@ -182,8 +197,8 @@ fn fitted(
     light: Vec3,
 ) -> Fitted {
     let mut best: Option<(Shading, Errors)> = None;
-    for truncated in [false, true] {
-        if !h.lit() && truncated {
+    for (rho_squared, truncated) in [(false, false), (false, true), (true, false), (true, true)] {
+        if !h.lit() && (truncated || rho_squared) {
             continue;
         }
         let shading = if h.lit() {
@@ -191,6 +206,7 @@ fn fitted(
                 &measured,
                 observed,
                 truncated,
+                rho_squared,
                 setup.power,
                 setup.indirect,
                 1,
@@ -198,6 +214,7 @@ fn fitted(
             Shading {
                 power,
                 indirect,
+                rho_squared,
                 truncated,
                 ..Shading::handout()
             }
@@ -205,7 +222,9 @@ fn fitted(
             Shading::handout()
         };
         let e = errors(&measured, observed, h.lit(), shading);
-        if best.is_none_or(|(_, b)| e.interior_rmse < b.interior_rmse) {
+        // ρ twice must explain clearly more: not a tie broken by rounding.
+        let margin = if rho_squared { 0.95 } else { 1.0 };
+        if best.is_none_or(|(_, b)| e.interior_rmse < b.interior_rmse * margin) {
             best = Some((shading, e));
         }
     }
@@ -315,11 +334,12 @@ const LIGHT_STRIDE: usize = 4;
 fn light_score(shapes: &Fitted, observed: &Frame, setup: &Setup, light: Vec3) -> f64 {
     let mut m = shapes.measured.clone();
     m.direct = direct_pass(shapes.hypothesis, &setup.mesh, &setup.camera, light);
-    let truncated = shapes.shading.truncated;
+    let (truncated, rho_squared) = (shapes.shading.truncated, shapes.shading.rho_squared);
     let (power, indirect) = fit_light(
         &m,
         observed,
         truncated,
+        rho_squared,
         setup.power,
         setup.indirect,
         LIGHT_STRIDE,
@@ -328,6 +348,7 @@ fn light_score(shapes: &Fitted, observed: &Frame, setup: &Setup, light: Vec3) ->
         power,
         indirect,
         truncated,
+        rho_squared,
         ..Shading::handout()
     };
     let (mut sum, mut count) = (0u64, 0u64);
@@ -525,6 +546,7 @@ pub fn check_image(observed: &Frame, setup: &Setup) -> ImageCheck {
         expected,
         light_searched: setup.fit_light,
         notes: Vec::new(),
+        adjusted: false,
         camera: None,
         crop: None,
     }

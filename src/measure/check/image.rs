@@ -391,8 +391,12 @@ fn interior_of(surface: &[u16], width: u32, height: u32, margin: u32) -> Vec<boo
 pub struct Shading {
     pub power: f32,
     pub indirect: f32,
-    /// π written as 3.14 in eq. 10: the direct light 1.0005 times stronger.
-    pub pi_314: bool,
+    /// π as eq. 10 is coded: π itself, 3.14 (the direct light 1.0005 times
+    /// stronger) or 3 (1.047 times).
+    pub pi: f32,
+    /// The reflectance multiplied in twice, `ρ ρ (D + N)`: ρ applied in the
+    /// light and again as the colour (lit stages).
+    pub rho_squared: bool,
     /// Colours truncated to 8 bits instead of rounded.
     pub truncated: bool,
 }
@@ -403,18 +407,15 @@ impl Shading {
         Shading {
             power: l.power.x,
             indirect: l.indirect.x,
-            pi_314: false,
+            pi: std::f32::consts::PI,
+            rho_squared: false,
             truncated: false,
         }
     }
 
     /// The power that multiplies the direct light per unit power computed with π.
     fn effective_power(self) -> f32 {
-        if self.pi_314 {
-            self.power * (std::f32::consts::PI / PI_314)
-        } else {
-            self.power
-        }
+        self.power * (std::f32::consts::PI / self.pi)
     }
 }
 
@@ -426,6 +427,7 @@ pub(super) fn predict(m: &Measured, i: usize, lit: bool, shading: Shading) -> u3
     }
     let rho = m.surfaces[s as usize].0;
     let c = if lit {
+        let rho = if shading.rho_squared { rho * rho } else { rho };
         rho * (shading.effective_power() * m.direct[i] + shading.indirect)
     } else {
         rho
@@ -531,8 +533,14 @@ impl Fitted {
         if self.shading.truncated {
             names.push("truncated-colours");
         }
-        if self.shading.pi_314 {
+        if self.shading.pi == PI_314 {
             names.push("pi-3.14");
+        }
+        if self.shading.pi == 3.0 {
+            names.push("pi-3");
+        }
+        if self.shading.rho_squared {
+            names.push("rho-squared");
         }
         names
     }
@@ -664,6 +672,10 @@ pub struct ImageCheck {
     /// What was done to the image before checking it, in words (red and blue
     /// swapped back, a focal length other than assumed).
     pub notes: Vec<String>,
+    /// Whether the image was adjusted before it was explained (red and blue
+    /// swapped back, flipped, a gamma taken off): the student's program has the
+    /// slip, so the image is not the handout's figure even when the repair is.
+    pub adjusted: bool,
     /// The camera fitted to the image when it is not the handout's.
     pub camera: Option<crate::pipeline::Camera>,
     /// Where the render was found inside a screenshot: x, y, width, height.
@@ -675,6 +687,6 @@ impl ImageCheck {
     /// asked for) within [`THRESHOLD`] at every pixel: `check`'s exit status 0.
     pub fn is_handouts_figure(&self, stage: Option<StageName>) -> bool {
         let asked = |f: &Fitted| stage.is_none_or(|s| f.hypothesis.stage == s);
-        self.fitted.as_ref().is_some_and(asked) && self.before.off == 0.0
+        self.fitted.as_ref().is_some_and(asked) && self.before.off == 0.0 && !self.adjusted
     }
 }

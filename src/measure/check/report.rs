@@ -49,6 +49,8 @@ pub fn variant_words(name: &str) -> &'static str {
         "perspective-vertex-light" => "the light per vertex is interpolated perspective-correctly",
         "truncated-colours" => "colours are truncated to 8 bits instead of rounded",
         "pi-3.14" => "pi is written as 3.14",
+        "pi-3" => "pi is written as 3",
+        "rho-squared" => "the reflectance is multiplied in twice: rho rho (D + N)",
         _ => "an unknown variant",
     }
 }
