@@ -58,44 +58,17 @@ fn check(a: &CheckArgs) -> Result<(), Failure> {
             false => Err(Failure::Differs),
         };
     }
-    let options = check::CheckOptions {
-        stage: a.stage,
-        size: a.size,
-        focal: a.focal,
-        camera: a.camera,
-        yaw: a.yaw,
-        pitch: a.pitch,
-        light: a.light,
-        light_power: a.light_power,
-        indirect: a.indirect,
-        fit_light: a.fit_light,
-        out: a.out.clone(),
-    };
+    let options = a.options();
     let single = match a.images.as_slice() {
         [one] if !one.is_dir() => Some(one),
         _ => None,
     };
     let Some(image) = single else {
-        let files = check::submission_files(&a.images).map_err(failure)?;
-        if files.is_empty() {
-            let names: Vec<String> = a.images.iter().map(|p| p.display().to_string()).collect();
-            return Err(Failure::Trouble(format!(
-                "no files to check in {}",
-                names.join(", ")
-            )));
-        }
-        let checks = check::check_files(&files, &options, app::parallel::cores());
-        match a.json {
-            true => print_out(&check::files_json(&checks))?,
-            false => print_out(&check::files_text(&checks))?,
-        }
-        if let Some(csv) = &a.csv {
-            app::image_io::write_text(csv, &check::files_csv(&checks))?;
-            eprintln!("wrote {}", csv.display());
-        }
-        for path in checks.iter().flat_map(|c| &c.written) {
-            eprintln!("wrote {}", path.display());
-        }
+        let (checks, table) =
+            check::check_many(&a.images, &options, a.json, a.csv.as_deref()).map_err(failure)?;
+        print_out(&table)?;
+        let written = a.csv.iter().chain(checks.iter().flat_map(|c| &c.written));
+        written.for_each(|path| eprintln!("wrote {}", path.display()));
         return match checks.iter().all(|c| c.status == check::Status::Matches) {
             true => Ok(()),
             false => Err(Failure::Differs),

@@ -1481,6 +1481,12 @@ fn a_folder_gives_one_row_per_file_and_exit_1() {
     assert!(lines[1].starts_with(&format!(
         "{{\"file\":\"{c}\",\"status\":\"unreadable\",\"error\":\"cannot read"
     )));
+    // A table that cannot be written is trouble, said before any checking.
+    one_line_error(
+        &["check", &s(&subs), "--csv", &s(&subs)],
+        2,
+        &format!("error: cannot write {}: it is a folder", s(&subs)),
+    );
     // The right one alone: exit 0; an empty folder is trouble (2).
     assert_eq!(
         rasterlab(&["check", &s(&subs.join("anna"))]).status.code(),

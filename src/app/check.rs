@@ -498,6 +498,40 @@ pub fn check_files(files: &[PathBuf], options: &CheckOptions, threads: usize) ->
     }
 }
 
+/// `check DIR|FILES...`: every file checked on every core, the table (or with
+/// `json` the JSON lines) to print, and the CSV written to `csv`. A CSV path that
+/// is a folder, or inputs with no files, are refused before any checking.
+pub fn check_many(
+    inputs: &[PathBuf],
+    options: &CheckOptions,
+    json: bool,
+    csv: Option<&Path>,
+) -> Result<(Vec<FileCheck>, String), CheckError> {
+    if let Some(csv) = csv.filter(|c| c.is_dir()) {
+        return Err(CheckError::Run(format!(
+            "cannot write {}: it is a folder",
+            csv.display()
+        )));
+    }
+    let files = submission_files(inputs)?;
+    if files.is_empty() {
+        let names: Vec<String> = inputs.iter().map(|p| p.display().to_string()).collect();
+        return Err(CheckError::Run(format!(
+            "no files to check in {}",
+            names.join(", ")
+        )));
+    }
+    let checks = check_files(&files, options, crate::app::parallel::cores());
+    let table = match json {
+        true => files_json(&checks),
+        false => files_text(&checks),
+    };
+    if let Some(csv) = csv {
+        crate::app::image_io::write_text(csv, &files_csv(&checks))?;
+    }
+    Ok((checks, table))
+}
+
 /// The folder every file is in, so that names are told apart by what follows.
 fn common_folder(files: &[PathBuf]) -> PathBuf {
     let mut common: Option<PathBuf> = None;

@@ -955,6 +955,25 @@ pub struct CheckArgs {
     pub json: bool,
 }
 
+impl CheckArgs {
+    /// What the checker is asked, from the options.
+    pub fn options(&self) -> crate::app::check::CheckOptions {
+        crate::app::check::CheckOptions {
+            stage: self.stage,
+            size: self.size,
+            focal: self.focal,
+            camera: self.camera,
+            yaw: self.yaw,
+            pitch: self.pitch,
+            light: self.light,
+            light_power: self.light_power,
+            indirect: self.indirect,
+            fit_light: self.fit_light,
+            out: self.out.clone(),
+        }
+    }
+}
+
 #[derive(Subcommand, Debug)]
 pub enum CheckRows {
     /// Compares a printed ComputePolygonRows output (section 4's test program) with
