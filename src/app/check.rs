@@ -8,8 +8,8 @@ use crate::measure::check::locate::locate;
 use crate::measure::check::pose::fit_pose;
 use crate::measure::check::rows::{check_rows, parse_rows_skipping, RowsCheck};
 use crate::measure::heat::heat_map_picture;
-use crate::pipeline::Frame;
 use crate::pipeline::StageName;
+use crate::pipeline::{Camera, Frame};
 use crate::scene::input::{read_image, read_text_bounded, read_text_file, ImageLimit};
 use glam::Vec3;
 use std::path::{Path, PathBuf};
@@ -114,6 +114,11 @@ fn remove_gamma(frame: &Frame) -> Frame {
     out
 }
 
+/// Whether `check` found a lab 3 image.
+fn lab3(check: &ImageCheck) -> bool {
+    check.fitted.is_some()
+}
+
 /// Whether `check` explains its image well: a lab 3 image whose differences, if
 /// any, lie on edges.
 fn explained(check: &ImageCheck) -> bool {
@@ -178,12 +183,16 @@ fn check_image_named(
     setup.indirect = options.indirect;
     setup.fit_light = options.fit_light;
     let mut check = check_image(&observed, &setup);
-    // Slips that hide a lab 3 image, tried in turn while it is not one; the
-    // first that explains it is kept, with the image and setup it was checked
-    // with (so the heat map and any later step see the same image).
-    let attempt = |image: Frame, tried: Setup, note: String, check: &mut ImageCheck| {
+    // Slips that hide a lab 3 image, tried in turn; the first whose check
+    // `accept`s is kept, with the image and setup it was checked with (so the
+    // heat map and any later step see the same image).
+    let attempt = |image: Frame,
+                   tried: Setup,
+                   note: String,
+                   accept: fn(&ImageCheck) -> bool,
+                   check: &mut ImageCheck| {
         let again = check_image(&image, &tried);
-        if again.fitted.is_some() {
+        if accept(&again) {
             *check = again;
             check.notes.push(note);
             Some((image, tried))
@@ -194,8 +203,13 @@ fn check_image_named(
     // Red and blue swapped: an SDL surface read in the other byte order.
     if check.fitted.is_none() {
         let note = "red and blue are swapped in this image (a pixel format read in the wrong byte order, a common SDL slip); it was checked with them swapped back".to_string();
-        if let Some((image, _)) = attempt(swap_red_blue(&observed), setup.clone(), note, &mut check)
-        {
+        if let Some((image, _)) = attempt(
+            swap_red_blue(&observed),
+            setup.clone(),
+            note,
+            lab3,
+            &mut check,
+        ) {
             observed = image;
             check.adjusted = true;
         }
@@ -211,12 +225,10 @@ fn check_image_named(
         if explained(&check) {
             break;
         }
-        let again = check_image(&undo(&observed), &setup);
-        if explained(&again) {
-            check = again;
-            check.notes.push(note.to_string());
+        let (image, note) = (undo(&observed), note.to_string());
+        if let Some((image, _)) = attempt(image, setup.clone(), note, explained, &mut check) {
+            observed = image;
             check.adjusted = true;
-            observed = undo(&observed);
         }
     }
     // rasterlab's own focal length of 500 on an image that is not 500 high.
@@ -224,7 +236,7 @@ fn check_image_named(
         let mut ours = setup.clone();
         ours.camera.focal = 500.0;
         let note = format!("checked with focal length 500, rasterlab's default, not the image's height {h}: give --focal to say which");
-        if let Some((_, tried)) = attempt(observed.clone(), ours, note, &mut check) {
+        if let Some((_, tried)) = attempt(observed.clone(), ours, note, lab3, &mut check) {
             setup = tried;
         }
     }
@@ -252,7 +264,7 @@ fn check_image_named(
                 round3(c.pitch.to_degrees()),
                 pose.score * 100.0
             );
-            if let Some((_, tried)) = attempt(observed.clone(), moved, note, &mut check) {
+            if let Some((_, tried)) = attempt(observed.clone(), moved, note, lab3, &mut check) {
                 check.camera = Some(c);
                 check.adjusted = true;
                 setup = tried;
@@ -261,12 +273,8 @@ fn check_image_named(
     }
     // The skeleton's camera at z = -3.001 typed as -3: the same picture but for
     // a pixel here and there along the edges, which names it.
-    let handout_camera = setup.camera.position == Setup::handout(w, h).camera.position;
-    if check.fitted.is_some()
-        && handout_camera
-        && options.camera.is_none()
-        && check.remaining.total > 0
-    {
+    let handout_camera = setup.camera.position == Camera::handout(w, h).position;
+    if handout_camera && options.camera.is_none() && check.remaining.summary() == "edges" {
         let mut at_3 = setup.clone();
         at_3.camera.position.z = -3.0;
         let again = check_image(&observed, &at_3);
@@ -373,34 +381,26 @@ impl Status {
     }
 }
 
-/// One file checked: its status, the report (for an image that was read) or
-/// why it was not read, and the files written for it.
+/// One file checked: its status, the report (for an image that was read), its
+/// first sentence or why the file was not read, and the files written for it.
 #[derive(Debug)]
 pub struct FileCheck {
     pub file: PathBuf,
     pub status: Status,
+    /// The report's first sentence, or why the file was not read.
+    pub summary: String,
+    /// The report; `None` for a file that was not read.
     pub check: Option<ImageCheck>,
-    pub error: Option<String>,
     pub written: Vec<PathBuf>,
 }
 
-impl FileCheck {
-    /// The report's first sentence, or why the file was not read.
-    pub fn summary(&self) -> String {
-        if let Some(e) = &self.error {
-            return e.clone();
-        }
-        let name = self.file.display().to_string();
-        let text = self
-            .check
-            .as_ref()
-            .map(|c| c.text(&name))
-            .unwrap_or_default();
-        let first = text
-            .lines()
-            .find(|l| !l.starts_with("Note: ") && !l.is_empty());
-        first.unwrap_or("").to_string()
-    }
+/// The first sentence of `check`'s report on `file`.
+fn first_sentence(check: &ImageCheck, file: &Path) -> String {
+    let text = check.text(&file.display().to_string());
+    let first = text
+        .lines()
+        .find(|l| !l.starts_with("Note: ") && !l.is_empty());
+    first.unwrap_or("").to_string()
 }
 
 /// The most files one `check` reads from its folders: a course has hundreds
@@ -475,16 +475,16 @@ pub fn check_files(files: &[PathBuf], options: &CheckOptions, threads: usize) ->
                 } else {
                     Status::NotLab3
                 },
+                summary: first_sentence(&check, file),
                 file: file.clone(),
                 check: Some(check),
-                error: None,
                 written,
             },
             Err(CheckError::Usage(e) | CheckError::Run(e)) => FileCheck {
                 file: file.clone(),
                 status: Status::Unreadable,
+                summary: e,
                 check: None,
-                error: Some(e),
                 written: Vec::new(),
             },
         }
@@ -573,7 +573,7 @@ pub fn files_text(checks: &[FileCheck]) -> String {
             "{}\t{}\t{}\n",
             c.file.display(),
             c.status.name(),
-            c.summary()
+            c.summary
         ));
     }
     let count = |s: Status| checks.iter().filter(|c| c.status == s).count();
@@ -599,15 +599,12 @@ pub fn files_json(checks: &[FileCheck]) -> String {
             json_string(&c.file.display().to_string()),
             json_string(c.status.name())
         );
-        match (&c.check, &c.error) {
-            (Some(check), _) => {
+        match &c.check {
+            Some(check) => {
                 let report = check.json(&c.file.display().to_string());
                 out.push_str(&format!("{head},{}\n", &report[1..]));
             }
-            (None, error) => out.push_str(&format!(
-                "{head},\"error\":{}}}\n",
-                json_string(error.as_deref().unwrap_or(""))
-            )),
+            None => out.push_str(&format!("{head},\"error\":{}}}\n", json_string(&c.summary))),
         }
     }
     out
@@ -653,7 +650,7 @@ pub fn files_csv(checks: &[FileCheck]) -> String {
             power,
             indirect,
             cell(&variants),
-            cell(&c.summary()),
+            cell(&c.summary),
         ];
         out.push_str(&row.join(","));
         out.push('\n');

@@ -143,6 +143,18 @@ impl<V: Varying> RunningSum<V> {
         }
     }
 
+    /// The current 1/z and varying at pixel (x, y): for a walk that counts its
+    /// positions in integers, as a row does.
+    #[inline]
+    pub fn at(&self, x: i32, y: i32) -> Pixel<V> {
+        Pixel {
+            x,
+            y,
+            zinv: self.current.zinv,
+            varying: self.current.varying,
+        }
+    }
+
     #[inline]
     pub fn advance(&mut self) {
         let c = &mut self.current;

@@ -188,6 +188,11 @@ pub(super) fn quick_fit(h: Hypothesis, observed: &Frame, setup: &Setup, light: V
     )
 }
 
+/// The interior RMSE (0 to 255) above which a fit with ρ once is poor enough to
+/// try ρ twice: a right hypothesis fits within 1, ρ twice on the box's colours
+/// leaves tens.
+const RHO_SQUARED_TRIED_ABOVE: f64 = 4.0;
+
 /// [`quick_fit`] of what has been measured.
 fn fitted(
     h: Hypothesis,
@@ -200,6 +205,11 @@ fn fitted(
     for (rho_squared, truncated) in [(false, false), (false, true), (true, false), (true, true)] {
         if !h.lit() && (truncated || rho_squared) {
             continue;
+        }
+        // ρ twice only where ρ once leaves the interiors off: this runs for
+        // every hypothesis and every light the search tries.
+        if rho_squared && best.is_some_and(|(_, b)| b.interior_rmse <= RHO_SQUARED_TRIED_ABOVE) {
+            break;
         }
         let shading = if h.lit() {
             let (power, indirect) = fit_light(

@@ -265,11 +265,7 @@ pub fn draw_polygon_rows<V: Varying>(
             sum.advance();
         }
         for x in first..=last {
-            plot(Pixel {
-                x,
-                y: l.y,
-                ..sum.value(|v| v as i32)
-            });
+            plot(sum.at(x, l.y));
             sum.advance();
         }
     }
