@@ -1168,6 +1168,26 @@ fn in_window(frame: &Frame, bar: u32, border: u32, scale: u32) -> Frame {
     out
 }
 
+/// `frame` at half its size, each pixel the rounded mean of a 2 x 2 block.
+fn halved(frame: &Frame) -> Frame {
+    let (w, h) = (frame.width / 2, frame.height / 2);
+    let mut out = Frame::new(w, h);
+    for y in 0..h {
+        for x in 0..w {
+            let mut sum = [0u32; 3];
+            for (dx, dy) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+                let c = frame.color[((2 * y + dy) * frame.width + 2 * x + dx) as usize];
+                for (k, shift) in [16, 8, 0].into_iter().enumerate() {
+                    sum[k] += c >> shift & 0xff;
+                }
+            }
+            let [r, g, b] = sum.map(|s| (s + 2) / 4);
+            out.color[(y * w + x) as usize] = r << 16 | g << 8 | b;
+        }
+    }
+    out
+}
+
 /// A window screenshot is cut to the render it holds, and the report says what
 /// was left out; a render of another shape goes through as it is.
 #[test]
@@ -1215,6 +1235,57 @@ fn the_render_is_found_inside_a_window_screenshot() {
             fitted.variants()
         );
     }
+    // On a desktop: the window at (300, 120) of a 1280 x 800 blue gradient.
+    let mut desktop = Frame::new(1280, 800);
+    for (i, c) in desktop.color.iter_mut().enumerate() {
+        let (x, y) = (i as u32 % 1280, i as u32 / 1280);
+        *c = (30 + y * 60 / 800) << 16 | (60 + x * 40 / 1280) << 8 | 140;
+    }
+    let window = in_window(&lit, 30, 2, 1);
+    for y in 0..window.height {
+        for x in 0..window.width {
+            desktop.color[((y + 120) * 1280 + x + 300) as usize] =
+                window.color[(y * window.width + x) as usize];
+        }
+    }
+    write_image(&desktop, &dir.join("desktop.png")).unwrap();
+    let (check, _) = check_image_file(&dir.join("desktop.png"), &CheckOptions::default()).unwrap();
+    assert_eq!(
+        check.notes,
+        ["the render is the 500x500 square at (302, 150) of this 1280x800 screenshot; left out: 150 pixels above, 150 pixels below, 302 pixels left of, 478 pixels right of (the window's title bar and borders, and the desktop around it)"]
+    );
+    assert_eq!(check.crop, Some([302, 150, 500, 500]));
+    let f = check.fitted.expect("desktop: a lab 3 image");
+    assert_eq!((f.hypothesis.figure(), f.variants().len()), (7, 0));
+    assert!(check.remaining.summary() == "none", "{:?}", check.remaining);
+    // Shrunk to half, bar and all (each pixel the mean of a 2 x 2 block): found,
+    // checked at the size it was drawn, and no variant read off its blended edges.
+    let shrunk = halved(&in_window(&depth, 30, 0, 1));
+    write_image(&shrunk, &dir.join("shrunk.png")).unwrap();
+    let (check, _) = check_image_file(&dir.join("shrunk.png"), &CheckOptions::default()).unwrap();
+    assert_eq!(
+        check.notes,
+        [
+            "the render is the 250x250 square at (0, 15) of this 250x265 screenshot; left out: 15 pixels above (a window's title bar and borders)",
+            "the image was shrunk to half its size (the colours either side of each edge are blended, as a 2 x 2 mean makes them); it was checked doubled, at 500x500, and no variant was looked for on its edges",
+        ]
+    );
+    let f = check.fitted.expect("shrunk: a lab 3 image");
+    assert_eq!((f.hypothesis.figure(), f.variants().len()), (5, 0));
+    assert_eq!(check.remaining.summary(), "edges");
+    // A render of our own at 250 x 250 is no shrunk screenshot.
+    let small = Settings {
+        camera: rasterlab::Camera {
+            focal: 250.0,
+            ..rasterlab::Camera::handout(250, 250)
+        },
+        ..Settings::default()
+    };
+    let (frame, _) = app::render(Figure::of(StageName::Depth), &cornell_box(), &small, None);
+    write_image(&frame, &dir.join("small.png")).unwrap();
+    let (check, _) = check_image_file(&dir.join("small.png"), &CheckOptions::default()).unwrap();
+    assert!(check.notes.is_empty(), "{:?}", check.notes);
+    assert_eq!(check.remaining.summary(), "none");
     // 640 x 480 with f = 480: the box between black bands, which are the render's.
     let wide = Settings {
         camera: rasterlab::Camera {
@@ -1286,50 +1357,61 @@ fn a_light_moved_far_is_found_and_light_is_never_negative() {
     );
 }
 
-/// A screenshot taken after walking around: the camera is fitted to the walls'
-/// colours (measured: 0.020, 0.013 and 0.020 off along x, y and z, 0.25 and
-/// 0.13 degrees off in yaw and pitch), and the image explained
-/// from there, with the options that reproduce the pose in the report.
+/// Screenshots taken after walking around, turned, raised and pulled back, in
+/// a 1000 x 1000 window with f = 1000 too: the camera is fitted to the walls'
+/// colours within 0.02 units and 0.5 degrees (measured: at most 0.014 units
+/// and 0.30 degrees off) and the image explained from there, with the options
+/// that reproduce the pose in the report.
 #[test]
 fn a_moved_camera_is_found() {
     use rasterlab::app::check::{check_image_file, CheckOptions};
     use rasterlab::app::{self as app, image_io::write_image, Settings};
     use rasterlab::{Figure, StageName};
     let dir = temp_dir("check-moved-camera");
-    let walked = Settings {
-        camera: rasterlab::Camera {
-            position: Vec3::new(0.3, -0.2, -4.5),
-            yaw: 8f32.to_radians(),
-            pitch: (-5f32).to_radians(),
-            ..rasterlab::Camera::handout(500, 500)
-        },
-        ..Settings::default()
-    };
-    let (frame, _) = app::render(Figure::of(StageName::Depth), &cornell_box(), &walked, None);
-    let shot = dir.join("walked.png");
-    write_image(&frame, &shot).unwrap();
-    let (check, _) = check_image_file(&shot, &CheckOptions::default()).unwrap();
-    assert_eq!(
-        check.fitted.as_ref().map(|f| f.hypothesis.figure()),
-        Some(5)
-    );
-    let c = check.camera.expect("a fitted camera");
-    let off = (c.position - walked.camera.position).abs();
-    assert!(off.max_element() < 0.025, "{c:?}");
-    assert!((c.yaw.to_degrees() - 8.0).abs() < 0.5, "{c:?}");
-    assert!((c.pitch.to_degrees() + 5.0).abs() < 0.5, "{c:?}");
-    assert!(
-        check.notes[0].starts_with("the camera is not at the handout's place; fitted at --camera "),
-        "{:?}",
-        check.notes
-    );
-    let json = check.json("walked.png");
-    assert!(
-        json.contains("\"camera\":[")
-            && json.contains("\"yaw\":")
-            && json.contains("\"focal\":500"),
-        "{json}"
-    );
+    let poses = [
+        (500, StageName::Depth, [0.3, -0.2, -4.5], 8.0, -5.0, 5),
+        (500, StageName::VertexLight, [0.0, 0.3, -3.6], 0.0, 10.0, 6),
+        (500, StageName::PixelLight, [-0.6, 0.1, -2.5], -12.0, 3.0, 7),
+        (500, StageName::Depth, [0.0, 0.0, -3.001], 15.0, 0.0, 5),
+        (1000, StageName::Depth, [-0.5, 0.2, -7.0], -5.0, 4.0, 5),
+    ];
+    for (side, stage, at, yaw, pitch, figure) in poses {
+        let walked = Settings {
+            camera: rasterlab::Camera {
+                position: Vec3::from(at),
+                yaw: f32::to_radians(yaw),
+                pitch: f32::to_radians(pitch),
+                focal: side as f32,
+                ..rasterlab::Camera::handout(side, side)
+            },
+            ..Settings::default()
+        };
+        let (frame, _) = app::render(Figure::of(stage), &cornell_box(), &walked, None);
+        let shot = dir.join("walked.png");
+        write_image(&frame, &shot).unwrap();
+        let (check, _) = check_image_file(&shot, &CheckOptions::default()).unwrap();
+        let f = check.fitted.as_ref().expect("a lab 3 image");
+        assert_eq!(f.hypothesis.figure(), figure, "{at:?}");
+        assert_eq!(f.variants(), Vec::<&str>::new(), "{at:?}");
+        let c = check.camera.expect("a fitted camera");
+        let off = (c.position - walked.camera.position).abs();
+        assert!(off.max_element() < 0.02, "{at:?}: {c:?}");
+        assert!((c.yaw.to_degrees() - yaw).abs() < 0.5, "{at:?}: {c:?}");
+        assert!((c.pitch.to_degrees() - pitch).abs() < 0.5, "{at:?}: {c:?}");
+        assert!(
+            check.notes[0]
+                .starts_with("the camera is not at the handout's place; fitted at --camera "),
+            "{:?}",
+            check.notes
+        );
+        let json = check.json("walked.png");
+        assert!(
+            json.contains("\"camera\":[")
+                && json.contains("\"yaw\":")
+                && json.contains(&format!("\"focal\":{side}")),
+            "{json}"
+        );
+    }
 }
 
 /// `--stage pixel-light` on Figure 4 is contradicted, not forced into "Figure 7

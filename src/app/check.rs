@@ -4,8 +4,8 @@
 use crate::app::image_io::{write_image, WriteError};
 use crate::measure::check::check_image;
 use crate::measure::check::image::{ImageCheck, Setup};
-use crate::measure::check::locate::locate;
-use crate::measure::check::pose::fit_pose;
+use crate::measure::check::locate::{doubled, locate, shrunk};
+use crate::measure::check::pose::{fit_pose, walls_in_place};
 use crate::measure::check::rows::{check_rows, parse_rows_skipping, RowsCheck};
 use crate::measure::heat::heat_map_picture;
 use crate::pipeline::StageName;
@@ -70,6 +70,12 @@ pub fn read_screenshot(path: &Path) -> Result<Frame, String> {
 /// [`crate::measure::check::pose`]); the walked-around screenshots tried get 99.7 %
 /// and more.
 const MIN_POSE_SCORE: f64 = 0.97;
+
+/// How much larger a share of the walls' pixels undoing a slip must put in
+/// place for the slip to be checked: a swap, a flip or a gamma undone where it
+/// was not made moves walls out of place, and one undone where it was made puts
+/// whole walls (a tenth of the image or more) back.
+const SLIP_GAIN: f64 = 0.01;
 
 /// `v` to three decimals, as the options that reproduce a pose are written.
 fn round3(v: f32) -> f32 {
@@ -157,6 +163,11 @@ fn check_image_named(
     if let Some(l) = &located {
         observed = l.frame.clone();
     }
+    // A screenshot shrunk to half: checked at the size it was drawn.
+    let blended = !fixed && shrunk(&observed);
+    if blended {
+        observed = doubled(&observed);
+    }
     let (w, h) = (observed.width, observed.height);
     if let Some((sw, sh)) = options.size {
         if (sw, sh) != (w, h) {
@@ -182,15 +193,32 @@ fn check_image_named(
     setup.power = options.light_power;
     setup.indirect = options.indirect;
     setup.fit_light = options.fit_light;
+    setup.edges_exact = !blended;
     let mut check = check_image(&observed, &setup);
+    // Mostly black: points, lines, or nothing; there are no walls to place.
+    let lit = observed
+        .color
+        .iter()
+        .filter(|&&c| c & 0x00f8_f8f8 != 0)
+        .count();
+    let has_walls = lit * 20 > observed.color.len();
+    let walls_before = match has_walls {
+        true => walls_in_place(&observed, &setup.camera),
+        false => 0.0,
+    };
     // Slips that hide a lab 3 image, tried in turn; the first whose check
     // `accept`s is kept, with the image and setup it was checked with (so the
-    // heat map and any later step see the same image).
+    // heat map and any later step see the same image). Where the image has
+    // walls, a slip is checked only if undoing it puts more of them in place
+    // (a frame drawn and compared, against a whole check).
     let attempt = |image: Frame,
                    tried: Setup,
                    note: String,
                    accept: fn(&ImageCheck) -> bool,
                    check: &mut ImageCheck| {
+        if has_walls && walls_in_place(&image, &tried.camera) <= walls_before + SLIP_GAIN {
+            return None;
+        }
         let again = check_image(&image, &tried);
         if accept(&again) {
             *check = again;
@@ -243,20 +271,16 @@ fn check_image_named(
     // A screenshot taken after walking around: the camera fitted to the
     // walls' colours, then the whole check from there (not on an image almost
     // all black: there are no walls to place).
-    let lit = observed
-        .color
-        .iter()
-        .filter(|&&c| c & 0x00f8_f8f8 != 0)
-        .count();
-    if check.fitted.is_none() && options.camera.is_none() && lit * 20 > observed.color.len() {
+    if check.fitted.is_none() && options.camera.is_none() && has_walls {
         let pose = fit_pose(&observed, setup.camera);
         // A pose that puts fewer walls in place is a search that found nothing.
         if pose.score >= MIN_POSE_SCORE {
             let mut moved = setup.clone();
             moved.camera = pose.camera;
+            moved.edges_exact = false;
             let c = pose.camera;
             let note = format!(
-                "the camera is not at the handout's place; fitted at --camera {},{},{} --yaw {} --pitch {} ({:.1} % of the walls' colours in place)",
+                "the camera is not at the handout's place; fitted at --camera {},{},{} --yaw {} --pitch {} ({:.1} % of the walls' colours in place); no variant was looked for on its edges, which a fitted camera places only to a fraction of a pixel",
                 round3(c.position.x),
                 round3(c.position.y),
                 round3(c.position.z),
@@ -305,6 +329,11 @@ fn check_image_named(
         check = again;
         check.notes.push(format!(
             "--stage {name} does not fit this image: the best {name} explanation has no direct light at all (P = 0); it was checked against every stage instead"
+        ));
+    }
+    if blended {
+        check.notes.insert(0, format!(
+            "the image was shrunk to half its size (the colours either side of each edge are blended, as a 2 x 2 mean makes them); it was checked doubled, at {w}x{h}, and no variant was looked for on its edges"
         ));
     }
     if let Some(l) = located {

@@ -513,7 +513,9 @@ pub fn check_image(observed: &Frame, setup: &Setup) -> ImageCheck {
             .expect("the best so far is among the starts");
         best = search_light(observed, setup, best, 0.1, 300);
     }
-    best = climb(best, observed, setup);
+    if setup.edges_exact {
+        best = climb(best, observed, setup);
+    }
     if search {
         // A position with two decimals, as people write them, wins if it explains
         // the interiors as well (within 0.02 of a step).

@@ -57,6 +57,11 @@ pub struct Setup {
     pub fit_light: bool,
     /// The stage, when known; otherwise every stage is tried.
     pub stage: Option<StageName>,
+    /// Whether the image's edges are where a rasterizer put them, seen from
+    /// exactly this camera: not so for a shrunk screenshot (its edges are
+    /// blends) nor for a fitted camera (within a fraction of a pixel). The
+    /// variants, whose traces are on edges, are looked for only then.
+    pub edges_exact: bool,
 }
 
 impl Setup {
@@ -74,6 +79,7 @@ impl Setup {
             indirect: None,
             fit_light: false,
             stage: None,
+            edges_exact: true,
         }
     }
 }

@@ -12,7 +12,8 @@
 //! and what it leaves out is not black (a render of another shape keeps its
 //! black bands: those are the render's own).
 
-use super::image::handout_figures;
+use super::image::{handout_figures, largest_difference};
+use super::pose::Classes;
 use crate::pipeline::{Camera, Frame};
 use crate::scene::cornell_box;
 
@@ -49,27 +50,26 @@ pub fn locate(shot: &Frame) -> Option<Located> {
             _ if shot.width.min(shot.height) >= 2 * 64 => half(shot),
             _ => continue,
         };
-        let short = image.width.min(image.height);
-        // Larger squares at full scale cost seconds to draw and compare; a
-        // screenshot that large is searched at half its size only.
-        if scale == 1 && short > MAX_FULL_SIDE {
-            continue;
-        }
-        for side in (short.saturating_sub(MAX_BORDERS).max(16)..=short).rev() {
-            let figures = figures_at(side);
-            let points = sample_points(side);
-            for y in 0..=image.height - side {
-                for x in 0..=image.width - side {
-                    let score = score(&image, x, y, &points, &figures);
-                    if best.is_none_or(|b| score > b.0) {
-                        best = Some((score, scale, side, x, y));
-                    }
+        for (side, x, y) in candidates(&image) {
+            // Larger squares at full scale cost seconds to draw and compare; a
+            // render that large is searched at half its size only.
+            if scale == 1 && side > MAX_FULL_SIDE {
+                continue;
+            }
+            let (figures, points) = (figures_at(side), sample_points(side));
+            for (x, y) in positions(&image, side, x, y) {
+                let score = score(&image, x, y, &points, &figures);
+                if best.is_none_or(|b| score > b.0) {
+                    best = Some((score, scale, side, x, y));
                 }
             }
         }
     }
     let (score, scale, side, x, y) = best?;
     let image = if scale == 1 { shot.clone() } else { half(shot) };
+    // The samples cannot tell a square one pixel off (a row of the title bar
+    // in, a row of the render out); every pixel can.
+    let (side, x, y) = polish(&image, side, x, y);
     let whole = (x, y, side, side) == (0, 0, image.width, image.height);
     if score < MIN_SCORE || (whole && scale == 1) {
         return None;
@@ -91,7 +91,8 @@ pub fn locate(shot: &Frame) -> Option<Located> {
         (right, "right of"),
     ] {
         if n > 0 {
-            parts.push(format!("{n} pixels {what}"));
+            let pixels = if n == 1 { "pixel" } else { "pixels" };
+            parts.push(format!("{n} {pixels} {what}"));
         }
     }
     let mut note = format!(
@@ -101,10 +102,12 @@ pub fn locate(shot: &Frame) -> Option<Located> {
         shot.height
     );
     if !parts.is_empty() {
-        note += &format!(
-            "; left out: {} (a window's title bar and borders)",
-            parts.join(", ")
-        );
+        // Borders are a few pixels; anything wider beside or below is a desktop.
+        let what = match left.max(right).max(bottom) > 16 * scale {
+            true => "the window's title bar and borders, and the desktop around it",
+            false => "a window's title bar and borders",
+        };
+        note += &format!("; left out: {} ({what})", parts.join(", "));
     }
     if scale == 2 {
         note += &format!("; it was halved to {side}x{side} (a HiDPI screenshot at twice the size)");
@@ -115,6 +118,106 @@ pub fn locate(shot: &Frame) -> Option<Located> {
         note,
         crop,
     })
+}
+
+/// Where to look, as (side, x range, y range): around the bounds of the box's
+/// coloured walls when it shows some (at the handout's pose the side walls
+/// reach the render's left, right, top and bottom edges, so those bounds are
+/// the render), else every square of the shorter side down to
+/// [`MAX_BORDERS`] less.
+fn candidates(image: &Frame) -> Vec<(u32, [u32; 2], [u32; 2])> {
+    let short = image.width.min(image.height);
+    match coloured_bounds(image) {
+        Some([x0, y0, x1, y1]) => {
+            let across = (x1 - x0 + 1).max(y1 - y0 + 1);
+            let near = |v: u32| [v.saturating_sub(SLACK), v + SLACK];
+            (across.saturating_sub(SLACK).max(16)..=(across + SLACK).min(short))
+                .map(|side| {
+                    // A square as wide as the walls, placed to hold them all.
+                    let ys = if y1 - y0 + 1 + SLACK >= side {
+                        near(y0)
+                    } else {
+                        [(y1 + 1).saturating_sub(side), y0]
+                    };
+                    let xs = if x1 - x0 + 1 + SLACK >= side {
+                        near(x0)
+                    } else {
+                        [(x1 + 1).saturating_sub(side), x0]
+                    };
+                    (side, xs, ys)
+                })
+                .collect()
+        }
+        None => (short.saturating_sub(MAX_BORDERS).max(16)..=short)
+            .map(|side| (side, [0, u32::MAX], [0, u32::MAX]))
+            .collect(),
+    }
+}
+
+/// How far the render's edge may be from the walls' bounds, in pixels: a row
+/// or column the walls leave black at the render's edge, and the search's slack.
+const SLACK: u32 = 3;
+
+/// The places of a square of `side` inside `image` within the ranges given.
+fn positions(image: &Frame, side: u32, xs: [u32; 2], ys: [u32; 2]) -> Vec<(u32, u32)> {
+    if side > image.width || side > image.height {
+        return Vec::new();
+    }
+    let (xmax, ymax) = (image.width - side, image.height - side);
+    let (x0, x1) = (xs[0].min(xmax), xs[1].min(xmax));
+    let (y0, y1) = (ys[0].min(ymax), ys[1].min(ymax));
+    (y0..=y1)
+        .flat_map(|y| (x0..=x1).map(move |x| (x, y)))
+        .collect()
+}
+
+/// The bounds (x0, y0, x1, y1, inclusive) of the pixels coloured like the box's
+/// red, green, blue, yellow, cyan or purple surfaces, when there are enough of
+/// them (a hundredth of the image) to be walls.
+fn coloured_bounds(image: &Frame) -> Option<[u32; 4]> {
+    let classes = Classes::of(&cornell_box());
+    let (mut b, mut count) = ([u32::MAX, u32::MAX, 0, 0], 0usize);
+    for y in 0..image.height {
+        for x in 0..image.width {
+            let c = image.color[(y * image.width + x) as usize];
+            if classes.coloured(c) {
+                b = [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)];
+                count += 1;
+            }
+        }
+    }
+    (count * 100 >= image.color.len()).then_some(b)
+}
+
+/// The square within a pixel of (`side`, `x`, `y`) whose pixels are nearest the
+/// best figure's: the most within 16/255.
+fn polish(image: &Frame, side: u32, x: u32, y: u32) -> (u32, u32, u32) {
+    let mut best = (0usize, side, x, y);
+    for s in side.saturating_sub(1).max(16)..=side + 1 {
+        if s > image.width || s > image.height {
+            continue;
+        }
+        let figures = figures_at(s);
+        let around = |v: u32, most: u32| v.saturating_sub(1)..=(v + 1).min(most);
+        for v in around(y, image.height - s) {
+            for u in around(x, image.width - s) {
+                let near = figures
+                    .iter()
+                    .map(|f| {
+                        (0..s)
+                            .flat_map(|j| (0..s).map(move |i| (i, j)))
+                            .filter(|&(i, j)| close(image.rgb(u + i, v + j), f.rgb(i, j)))
+                            .count()
+                    })
+                    .max()
+                    .unwrap_or(0);
+                if near > best.0 {
+                    best = (near, s, u, v);
+                }
+            }
+        }
+    }
+    (best.1, best.2, best.3)
 }
 
 /// The handout's seven figures at `side` x `side`, focal length `side`.
@@ -195,6 +298,51 @@ fn half(image: &Frame) -> Frame {
             }
             let [r, g, b] = sum.map(|s| (s + 2) / 4);
             out.color[(y * w + x) as usize] = r << 16 | g << 8 | b;
+        }
+    }
+    out
+}
+
+/// The largest side tested for a shrunk screenshot: twice it is drawn seven times.
+const MAX_SHRUNK_SIDE: u32 = 600;
+
+/// Whether a square `image` is a render shrunk to half its size: the handout's
+/// figures drawn twice as large and halved (each pixel the mean of a 2 x 2
+/// block, as image viewers shrink) match clearly more of its pixels within
+/// 2/255 than the figures drawn at its size. Shrinking blends the colours on
+/// either side of every edge, which no rasterizer draws.
+pub fn shrunk(image: &Frame) -> bool {
+    let side = image.width;
+    if image.height != side || !(16..=MAX_SHRUNK_SIDE).contains(&side) {
+        return false;
+    }
+    let matching = |figures: &[Frame]| {
+        figures
+            .iter()
+            .map(|f| {
+                f.color
+                    .iter()
+                    .zip(&image.color)
+                    .filter(|&(&a, &b)| largest_difference(a, b) <= 2)
+                    .count()
+            })
+            .max()
+            .unwrap_or(0)
+    };
+    let direct = matching(&figures_at(side));
+    let halved: Vec<Frame> = figures_at(2 * side).iter().map(half).collect();
+    let halved = matching(&halved);
+    let n = image.color.len();
+    halved * 2 >= n && halved > direct + n / 200
+}
+
+/// `image` at twice its size, each pixel a 2 x 2 block.
+pub fn doubled(image: &Frame) -> Frame {
+    let (w, h) = (image.width * 2, image.height * 2);
+    let mut out = Frame::new(w, h);
+    for y in 0..h {
+        for x in 0..w {
+            out.color[(y * w + x) as usize] = image.color[((y / 2) * image.width + x / 2) as usize];
         }
     }
     out

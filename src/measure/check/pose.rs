@@ -6,20 +6,26 @@
 //! stage's flat colours drawn from it: both black, or both lit with the same
 //! chromaticity (the colour over its largest channel, within 0.2), which light
 //! scales but does not change, so one score serves every filled stage, lit or
-//! not. The search starts from the given pose and a grid of 360 (8 distances
-//! back along z, 3 places along x, 5 yaws, 3 pitches), refines the best 4 by a
-//! pattern search from 0.25 units and 4 degrees down to 0.001 units and 1/64
-//! degree on every third pixel, then the best of those on every pixel.
+//! not.
+//!
+//! A pose is searched as an orbit about the box's centre: where the centre is
+//! seen (its camera-space x/z and y/z), how far it is along the view, and the
+//! yaw and pitch. Walking sideways while turning back keeps the picture almost
+//! the same; in these coordinates that is one coordinate (the turn with the
+//! centre held in place), so a search along the axes follows it.
+//!
+//! The search starts from the given pose and a grid of 1,800 orbits (8
+//! distances, 5 yaws, 3 pitches, the centre at 15 places), drawn at about 160
+//! pixels on the image's shorter side; the best few are refined by a pattern
+//! search there, and the best of those again at each finer size up to the
+//! image's own, where the steps end at 0.001 units and 1/64 degree.
 
 use crate::pipeline::target::unpack;
 use crate::pipeline::{Camera, Depth, Frame, Pipeline};
 use crate::scene::cornell_box;
 use glam::Vec3;
 
-/// Every [`STRIDE`]th pixel is scored while searching; every pixel at the end.
-const STRIDE: usize = 3;
-
-/// A fitted pose and its score (the share of sampled pixels that agree).
+/// A fitted pose and its score (the share of pixels that agree).
 #[derive(Clone, Copy, Debug)]
 pub struct Pose {
     pub camera: Camera,
@@ -44,52 +50,84 @@ fn agree(a: Option<[f32; 3]>, b: Option<[f32; 3]>) -> bool {
 /// How many of the best starting poses are refined.
 const STARTS: usize = 4;
 
+/// The shorter side, in pixels, of the images the grid is drawn at.
+const COARSE_SIDE: u32 = 160;
+
+/// An orbit: the box centre's camera-space x/z and y/z, its distance along
+/// the view, then yaw and pitch in degrees.
+type Orbit = [f32; 5];
+
+/// The first steps of the pattern search, per coordinate of an [`Orbit`].
+const FIRST_STEPS: Orbit = [0.05, 0.05, 0.25, 4.0, 4.0];
+
+/// The camera an orbit describes, with `base`'s image size and focal length.
+fn camera_of(p: Orbit, base: &Camera) -> Camera {
+    let mut camera = Camera {
+        yaw: p[3].to_radians(),
+        pitch: p[4].to_radians(),
+        ..*base
+    };
+    // The centre at (a d, b d, d) in camera space: C = -(that, in world axes).
+    let [right, down, forward] = camera.axes();
+    let centre = Vec3::new(p[0] * p[2], p[1] * p[2], p[2]);
+    camera.position = -(right * centre.x + down * centre.y + forward * centre.z);
+    camera
+}
+
+/// The orbit of a camera (inverse of [`camera_of`]).
+fn orbit_of(camera: &Camera) -> Orbit {
+    let c = camera.to_camera(Vec3::ZERO);
+    let d = if c.z.abs() < 1e-3 { 1e-3 } else { c.z };
+    [
+        c.x / d,
+        c.y / d,
+        d,
+        camera.yaw.to_degrees(),
+        camera.pitch.to_degrees(),
+    ]
+}
+
 /// Hooke and Jeeves' pattern search, maximising `score` from `start`: each
-/// coordinate up and down by its step (0.25 units, 4 degrees), and x with yaw
-/// and y with pitch diagonally, then a jump on
-/// along the way the pose moved while that helps; the steps halve when nothing
-/// helps, down to 0.001 units and 1/64 degree.
-fn refine(start: ([f32; 5], f64), score: &dyn Fn([f32; 5]) -> f64) -> ([f32; 5], f64) {
-    // Moves along each coordinate, then along x with yaw and y with pitch
-    // together: moving sideways and turning back shift the view alike, so the
-    // best pose often lies along such a diagonal.
-    let moves: Vec<[f32; 5]> = (0..5)
-        .flat_map(|k| {
-            [1.0, -1.0].map(|sign| std::array::from_fn(|i| if i == k { sign } else { 0.0 }))
-        })
-        .chain([(0, 3), (1, 4)].into_iter().flat_map(|(a, b)| {
-            [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)].map(|(sa, sb)| {
-                std::array::from_fn(|i| match i {
-                    i if i == a => sa,
-                    i if i == b => sb,
-                    _ => 0.0,
-                })
-            })
-        }))
-        .collect();
-    let explore = |from: ([f32; 5], f64), steps: &[f32; 5]| {
+/// coordinate up and down by its step, then a jump on along the way the pose
+/// moved while that helps; the steps halve when nothing helps, `halvings` times.
+fn refine(
+    start: (Orbit, f64),
+    steps: Orbit,
+    halvings: u32,
+    score: &dyn Fn(Orbit) -> f64,
+) -> (Orbit, f64) {
+    let explore = |from: (Orbit, f64), steps: &Orbit| {
         let mut best = from;
-        for m in &moves {
-            let p: [f32; 5] = std::array::from_fn(|k| best.0[k] + m[k] * steps[k]);
-            let e = score(p);
-            if e > best.1 + 1e-9 {
-                best = (p, e);
+        for k in 0..5 {
+            for sign in [1.0, -1.0] {
+                let mut p = best.0;
+                p[k] += sign * steps[k];
+                let e = score(p);
+                if e > best.1 + 1e-9 {
+                    best = (p, e);
+                    break;
+                }
             }
         }
         best
     };
     let mut base = start;
-    let mut steps = [0.25f32, 0.25, 0.25, 4.0, 4.0];
-    while steps[0] >= 0.001 {
+    let mut steps = steps;
+    let mut left = halvings;
+    loop {
         let mut next = explore(base, &steps);
         if next.1 <= base.1 + 1e-9 {
+            if left == 0 {
+                return base;
+            }
+            left -= 1;
             for s in &mut steps {
                 *s /= 2.0;
             }
             continue;
         }
         loop {
-            let jump: [f32; 5] = std::array::from_fn(|k| 2.0 * next.0[k] - base.0[k]);
+            let jump: Orbit = std::array::from_fn(|k| 2.0 * next.0[k] - base.0[k]);
             base = next;
             let beyond = explore((jump, score(jump)), &steps);
             if beyond.1 > base.1 + 1e-9 {
@@ -99,72 +137,309 @@ fn refine(start: ([f32; 5], f64), score: &dyn Fn([f32; 5]) -> f64) -> ([f32; 5],
             }
         }
     }
-    base
+}
+
+/// How far, in pixels of a level, a wall drawn where the screenshot has
+/// another still earns part of a pixel: the score falls off linearly over it,
+/// so a wall a few pixels out of place is nearer than one far out, and the
+/// search has a slope to climb where a plain count of agreeing pixels is flat.
+const REACH: f32 = 6.0;
+
+/// Nelder and Mead's simplex search, maximising `score` from `start` with a
+/// first simplex of `steps` along each coordinate, for at most `budget`
+/// scores: it turns along a ridge where moves along the axes stall.
+fn simplex(
+    start: (Orbit, f64),
+    steps: Orbit,
+    budget: usize,
+    score: &dyn Fn(Orbit) -> f64,
+) -> (Orbit, f64) {
+    let mut points: Vec<(Orbit, f64)> = vec![start];
+    for k in 0..5 {
+        let mut p = start.0;
+        p[k] += steps[k];
+        points.push((p, score(p)));
+    }
+    let mut used = 5;
+    let along = |a: &Orbit, b: &Orbit, t: f32| -> Orbit {
+        std::array::from_fn(|k| a[k] + t * (b[k] - a[k]))
+    };
+    while used < budget {
+        points.sort_by(|a, b| b.1.total_cmp(&a.1));
+        let worst = points[5];
+        let centre: Orbit =
+            std::array::from_fn(|k| points[..5].iter().map(|p| p.0[k]).sum::<f32>() / 5.0);
+        let reflected = along(&centre, &worst.0, -1.0);
+        let r = score(reflected);
+        used += 1;
+        if r > points[0].1 {
+            let expanded = along(&centre, &worst.0, -2.0);
+            let e = score(expanded);
+            used += 1;
+            points[5] = if e > r { (expanded, e) } else { (reflected, r) };
+        } else if r > points[4].1 {
+            points[5] = (reflected, r);
+        } else {
+            let contracted = along(&centre, &worst.0, 0.5);
+            let c = score(contracted);
+            used += 1;
+            if c > worst.1 {
+                points[5] = (contracted, c);
+            } else {
+                let best = points[0].0;
+                for p in &mut points[1..] {
+                    p.0 = along(&best, &p.0, 0.5);
+                    p.1 = score(p.0);
+                }
+                used += 5;
+            }
+        }
+    }
+    points
+        .into_iter()
+        .max_by(|a, b| a.1.total_cmp(&b.1))
+        .expect("six points")
+}
+
+/// The screenshot as seen at one size: for each class of colour (black, then
+/// each of the box's chromaticities), how far each pixel of an image `scale`
+/// times smaller is from the nearest pixel of that class.
+struct Level {
+    camera: Camera,
+    /// Per class, per pixel: the distance in pixels, at most [`REACH`].
+    near: Vec<Vec<f32>>,
+    /// Per pixel: its class, if any.
+    class: Vec<Option<u8>>,
+}
+
+/// The classes of colour a drawn or seen pixel can be: black, or like one of
+/// the box's materials.
+pub(super) struct Classes(Vec<[f32; 3]>);
+
+impl Classes {
+    pub(super) fn of(mesh: &crate::pipeline::Mesh) -> Classes {
+        let mut out: Vec<[f32; 3]> = Vec::new();
+        for m in &mesh.materials {
+            let c = chroma(crate::pipeline::target::pack(m.color)).unwrap_or([0.0; 3]);
+            if !out.iter().any(|&o| agree(Some(o), Some(c))) {
+                out.push(c);
+            }
+        }
+        Classes(out)
+    }
+
+    /// 0 for black, 1 + k for the k-th chromaticity, `None` for neither.
+    fn class(&self, c: u32) -> Option<u8> {
+        match chroma(c) {
+            None => Some(0),
+            seen => (self.0.iter().position(|&o| agree(Some(o), seen))).map(|k| k as u8 + 1),
+        }
+    }
+
+    /// Whether `c` is like one of the materials that are not grey (one
+    /// channel well below the largest): the walls a desktop rarely has.
+    pub(super) fn coloured(&self, c: u32) -> bool {
+        match self.class(c) {
+            Some(k) if k > 0 => self.0[k as usize - 1].iter().any(|&v| v < 0.5),
+            _ => false,
+        }
+    }
+
+    fn len(&self) -> usize {
+        self.0.len() + 1
+    }
+}
+
+impl Level {
+    fn new(observed: &Frame, start: &Camera, scale: u32, classes: &Classes) -> Level {
+        let camera = Camera {
+            width: (start.width / scale).max(1),
+            height: (start.height / scale).max(1),
+            focal: start.focal / scale as f32,
+            ..*start
+        };
+        // Pixel i's centre, measured from the small image's centre, scaled up
+        // and measured from the screenshot's.
+        let full = |i: u32, small: u32, big: u32| {
+            let at = (i as f32 + 0.5 - (small / 2) as f32) * scale as f32 + (big / 2) as f32;
+            (at.max(0.0) as u32).min(big - 1)
+        };
+        let (w, h) = (camera.width as usize, camera.height as usize);
+        let mut class = Vec::with_capacity(w * h);
+        for j in 0..camera.height {
+            let y = full(j, camera.height, observed.height);
+            for i in 0..camera.width {
+                let x = full(i, camera.width, observed.width);
+                class.push(classes.class(observed.color[(y * observed.width + x) as usize]));
+            }
+        }
+        let near = (0..classes.len())
+            .map(|k| distances(&class, w, h, k as u8))
+            .collect();
+        Level {
+            camera,
+            near,
+            class,
+        }
+    }
+}
+
+/// The chamfer distance (1 along a row or column, 1.4 diagonally) from each
+/// pixel to the nearest of class `k`, at most [`REACH`].
+fn distances(class: &[Option<u8>], w: usize, h: usize, k: u8) -> Vec<f32> {
+    let mut d: Vec<f32> = class
+        .iter()
+        .map(|&c| if c == Some(k) { 0.0 } else { REACH })
+        .collect();
+    let (straight, diagonal) = (1.0f32, std::f32::consts::SQRT_2);
+    for y in 0..h {
+        for x in 0..w {
+            let mut v = d[y * w + x];
+            if x > 0 {
+                v = v.min(d[y * w + x - 1] + straight);
+            }
+            if y > 0 {
+                v = v.min(d[(y - 1) * w + x] + straight);
+                if x > 0 {
+                    v = v.min(d[(y - 1) * w + x - 1] + diagonal);
+                }
+                if x + 1 < w {
+                    v = v.min(d[(y - 1) * w + x + 1] + diagonal);
+                }
+            }
+            d[y * w + x] = v;
+        }
+    }
+    for y in (0..h).rev() {
+        for x in (0..w).rev() {
+            let mut v = d[y * w + x];
+            if x + 1 < w {
+                v = v.min(d[y * w + x + 1] + straight);
+            }
+            if y + 1 < h {
+                v = v.min(d[(y + 1) * w + x] + straight);
+                if x + 1 < w {
+                    v = v.min(d[(y + 1) * w + x + 1] + diagonal);
+                }
+                if x > 0 {
+                    v = v.min(d[(y + 1) * w + x - 1] + diagonal);
+                }
+            }
+            d[y * w + x] = v.min(REACH);
+        }
+    }
+    d
+}
+
+/// The share of `observed`'s pixels whose class of colour (black, or like one
+/// of the box's walls) is the one the depth stage draws there from `camera`:
+/// 1 when every wall is where the screenshot has it, whatever the light.
+pub fn walls_in_place(observed: &Frame, camera: &Camera) -> f64 {
+    let mesh = cornell_box();
+    let classes = Classes::of(&mesh);
+    let mut drawn = Frame::default();
+    Pipeline::<_>::new().render(&Depth, &mesh, camera, &mut drawn);
+    let same = drawn
+        .color
+        .iter()
+        .zip(&observed.color)
+        .filter(|&(&d, &o)| classes.class(d) == classes.class(o))
+        .count();
+    same as f64 / observed.color.len().max(1) as f64
 }
 
 /// The pose that best explains `observed`, searched from `start` (whose image
 /// size and focal length are kept).
 pub fn fit_pose(observed: &Frame, start: Camera) -> Pose {
-    let seen: Vec<Option<[f32; 3]>> = observed.color.iter().map(|&c| chroma(c)).collect();
     let mesh = cornell_box();
     // One pipeline and one frame for the whole search, drawn into again and
     // again (a few thousand poses).
     let pipeline = std::cell::RefCell::new(Pipeline::<_>::new());
     let frame = std::cell::RefCell::new(Frame::default());
-    let score_at = |camera: &Camera, stride: usize| -> f64 {
+    let classes = Classes::of(&mesh);
+    // The score: per pixel drawn, 1 where the screenshot's pixel is of its
+    // class, falling to 0 at REACH pixels from the nearest one that is. With
+    // `count`, the plain share of pixels of the same class instead.
+    let draw_at = |level: &Level, p: Orbit, count: bool| -> f64 {
         let mut drawn = frame.borrow_mut();
+        let camera = camera_of(p, &level.camera);
         pipeline
             .borrow_mut()
-            .render(&Depth, &mesh, camera, &mut drawn);
-        let pairs = drawn.color.iter().zip(&seen).step_by(stride);
-        let (mut same, mut all) = (0usize, 0usize);
-        for (&c, &s) in pairs {
-            same += agree(chroma(c), s) as usize;
-            all += 1;
+            .render(&Depth, &mesh, &camera, &mut drawn);
+        // The depth stage draws a few flat colours: each one's class is worked
+        // out once per run of it.
+        let (mut last, mut last_class) = (0u32, Some(0u8));
+        let mut sum = 0.0f64;
+        for (i, &c) in drawn.color.iter().enumerate() {
+            if c != last {
+                (last, last_class) = (c, classes.class(c));
+            }
+            sum += match last_class {
+                Some(k) if count => (level.class[i] == Some(k)) as u8 as f64,
+                Some(k) => (1.0 - level.near[k as usize][i] / REACH) as f64,
+                None => 0.0,
+            };
         }
-        same as f64 / all as f64
+        sum / level.class.len() as f64
     };
-    let score = |camera: &Camera| score_at(camera, STRIDE);
-    // Position x, y, z, then yaw and pitch in degrees.
-    let pose_of = |p: [f32; 5]| Camera {
-        position: Vec3::new(p[0], p[1], p[2]),
-        yaw: p[3].to_radians(),
-        pitch: p[4].to_radians(),
-        ..start
-    };
-    let s = start.position;
-    let given = [
-        s.x,
-        s.y,
-        s.z,
-        start.yaw.to_degrees(),
-        start.pitch.to_degrees(),
-    ];
-    let mut starts = vec![(given, score(&start))];
-    for z in [-3.001, -3.5, -4.0, -5.0, -6.0, -8.0, -11.0, -15.0] {
-        for x in [-0.5, 0.0, 0.5] {
-            for yaw in [-20.0, -10.0, 0.0, 10.0, 20.0] {
-                for pitch in [-8.0, 0.0, 8.0] {
-                    let p = [x, 0.0, z, yaw, pitch];
-                    starts.push((p, score(&pose_of(p))));
+    let score_at = |level: &Level, p: Orbit| draw_at(level, p, false);
+    let short = start.width.min(start.height);
+    let mut scales = vec![1u32];
+    while short / (scales[0] * 2) >= COARSE_SIDE {
+        scales.insert(0, scales[0] * 2);
+    }
+    let levels: Vec<Level> = scales
+        .iter()
+        .map(|&s| Level::new(observed, &start, s, &classes))
+        .collect();
+    let coarse = &levels[0];
+    let given = orbit_of(&start);
+    let mut starts = vec![(given, score_at(coarse, given))];
+    for d in [4.0, 4.5, 5.0, 6.0, 7.0, 9.0, 12.0, 16.0] {
+        for yaw in [-20.0, -10.0, 0.0, 10.0, 20.0] {
+            for pitch in [-8.0, 0.0, 8.0] {
+                for a in [-0.3, -0.15, 0.0, 0.15, 0.3] {
+                    for b in [-0.15, 0.0, 0.15] {
+                        let p = [a, b, d, yaw, pitch];
+                        starts.push((p, score_at(coarse, p)));
+                    }
                 }
             }
         }
     }
     starts.sort_by(|a, b| b.1.total_cmp(&a.1));
-    // The best few starts refined; the best refined pose wins.
+    // The steps that finish one level start the next, finer one: each level
+    // halves them as often as it is coarser than the last.
+    let halvings = 2;
     let best = starts
         .iter()
         .take(STARTS)
-        .map(|&start| refine(start, &|p| score(&pose_of(p))))
+        .map(|&s| refine(s, FIRST_STEPS, halvings, &|p| score_at(coarse, p)))
         .max_by(|a, b| a.1.total_cmp(&b.1))
         .expect("at least one start");
-    // The last digits against every pixel.
-    let best = refine((best.0, score_at(&pose_of(best.0), 1)), &|p| {
-        score_at(&pose_of(p), 1)
-    });
+    let mut steps = FIRST_STEPS.map(|s| s / (1 << halvings) as f32);
+    let mut best = best;
+    for level in &levels[1..] {
+        best = refine((best.0, score_at(level, best.0)), steps, 1, &|p| {
+            score_at(level, p)
+        });
+        steps = steps.map(|s| s / 2.0);
+    }
+    // The last digits, on every pixel of the screenshot: down to 0.001 units.
+    let full = levels.last().expect("at least one level");
+    let left = (steps[2] / 0.001).log2().ceil().max(0.0) as u32;
+    if levels.len() > 1 || left > 0 {
+        best = refine((best.0, score_at(full, best.0)), steps, left, &|p| {
+            score_at(full, p)
+        });
+    }
+    // A simplex, restarted once around its best: a fresh simplex turns to a
+    // ridge the first one had flattened against.
+    for size in [16.0, 4.0] {
+        best = simplex(best, steps.map(|s| s * size), 150, &|p| score_at(full, p));
+    }
     Pose {
-        camera: pose_of(best.0),
-        score: best.1,
+        camera: camera_of(best.0, &start),
+        score: draw_at(full, best.0, true),
     }
 }
