@@ -756,6 +756,20 @@ fn bad_input_is_a_one_line_error() {
         err.starts_with(&format!("error: cannot read {}: ", p("text.png"))),
         "{err}"
     );
+    // A JPEG (its first bytes, as a phone or a web page saves one) is named.
+    std::fs::write(
+        p("photo.jpg"),
+        b"\xff\xd8\xff\xe0\x00\x10JFIF\x00\x01\x01\x00\x00\x01\x00\x01\x00\x00",
+    )
+    .unwrap();
+    one_line_error(
+        &["check", &p("photo.jpg")],
+        2,
+        &format!(
+            "error: cannot read {}: a JPEG image, which is not read: save the screenshot as PNG (a JPEG's compression also blurs the edges a check compares)",
+            p("photo.jpg")
+        ),
+    );
     let shot = p("shot.png");
     let rgb = vec![0u8; 40 * 30 * 3];
     image::save_buffer(&shot, &rgb, 40, 30, image::ExtendedColorType::Rgb8).unwrap();
@@ -1358,7 +1372,7 @@ fn a_light_moved_far_is_found_and_light_is_never_negative() {
 }
 
 /// Screenshots taken after walking around, turned, raised and pulled back, in
-/// a 1000 x 1000 window with f = 1000 too: the camera is fitted to the walls'
+/// a 1000 x 1000 window with f = 1000 and a 640 x 480 one with f = 640 too: the camera is fitted to the walls'
 /// colours within 0.02 units and 0.5 degrees (measured: at most 0.014 units
 /// and 0.30 degrees off) and the image explained from there, with the options
 /// that reproduce the pose in the report.
@@ -1375,14 +1389,18 @@ fn a_moved_camera_is_found() {
         (500, StageName::Depth, [0.0, 0.0, -3.001], 15.0, 0.0, 5),
         (1000, StageName::Depth, [-0.5, 0.2, -7.0], -5.0, 4.0, 5),
     ];
-    for (side, stage, at, yaw, pitch, figure) in poses {
+    // A 640 x 480 window with f = 640 (the width, not the handout's height):
+    // the focal length is found too.
+    let wide = (640, StageName::PixelLight, [0.2, -0.1, -4.0], -6.0, 3.0, 7);
+    for (side, stage, at, yaw, pitch, figure) in poses.into_iter().chain([wide]) {
+        let height = if side == 640 { 480 } else { side };
         let walked = Settings {
             camera: rasterlab::Camera {
                 position: Vec3::from(at),
                 yaw: f32::to_radians(yaw),
                 pitch: f32::to_radians(pitch),
                 focal: side as f32,
-                ..rasterlab::Camera::handout(side, side)
+                ..rasterlab::Camera::handout(side, height)
             },
             ..Settings::default()
         };
@@ -1394,6 +1412,7 @@ fn a_moved_camera_is_found() {
         assert_eq!(f.hypothesis.figure(), figure, "{at:?}");
         assert_eq!(f.variants(), Vec::<&str>::new(), "{at:?}");
         let c = check.camera.expect("a fitted camera");
+        assert_eq!(c.focal, side as f32);
         let off = (c.position - walked.camera.position).abs();
         assert!(off.max_element() < 0.02, "{at:?}: {c:?}");
         assert!((c.yaw.to_degrees() - yaw).abs() < 0.5, "{at:?}: {c:?}");

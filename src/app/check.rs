@@ -271,16 +271,42 @@ fn check_image_named(
     // A screenshot taken after walking around: the camera fitted to the
     // walls' colours, then the whole check from there (not on an image almost
     // all black: there are no walls to place).
-    if check.fitted.is_none() && options.camera.is_none() && has_walls {
-        let pose = fit_pose(&observed, setup.camera);
+    if !explained(&check) && options.camera.is_none() && has_walls {
+        // The focal length, unless given: the height (the handout's), the
+        // width, or rasterlab's 500, whichever puts the most walls in place.
+        let mut focals = vec![setup.camera.focal];
+        if options.focal.is_none() {
+            for f in [w as f32, 500.0] {
+                if !focals.contains(&f) {
+                    focals.push(f);
+                }
+            }
+        }
+        let pose = focals
+            .iter()
+            .map(|&focal| {
+                fit_pose(
+                    &observed,
+                    Camera {
+                        focal,
+                        ..setup.camera
+                    },
+                )
+            })
+            .max_by(|a, b| a.score.total_cmp(&b.score))
+            .expect("one focal length");
         // A pose that puts fewer walls in place is a search that found nothing.
         if pose.score >= MIN_POSE_SCORE {
             let mut moved = setup.clone();
             moved.camera = pose.camera;
             moved.edges_exact = false;
             let c = pose.camera;
+            let focal = match c.focal == h as f32 {
+                true => String::new(),
+                false => format!(" --focal {}", c.focal),
+            };
             let note = format!(
-                "the camera is not at the handout's place; fitted at --camera {},{},{} --yaw {} --pitch {} ({:.1} % of the walls' colours in place); no variant was looked for on its edges, which a fitted camera places only to a fraction of a pixel",
+                "the camera is not at the handout's place; fitted at --camera {},{},{} --yaw {} --pitch {}{focal} ({:.1} % of the walls' colours in place); no variant was looked for on its edges, which a fitted camera places only to a fraction of a pixel",
                 round3(c.position.x),
                 round3(c.position.y),
                 round3(c.position.z),

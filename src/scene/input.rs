@@ -96,9 +96,20 @@ pub fn image_size(path: &Path) -> Result<(u32, u32), String> {
     let reader = image::ImageReader::new(BufReader::new(open_regular(path)?))
         .with_guessed_format()
         .map_err(|e| format!("cannot read: {e}"))?;
-    if reader.format().is_none() {
-        // What a JPEG, a text file or a truncated header gets.
-        return Err("not a PNG, BMP or GIF image (its first bytes are none of those)".into());
+    match reader.format() {
+        // What a text file or a truncated header gets.
+        None => {
+            return Err("not a PNG, BMP or GIF image (its first bytes are none of those)".into())
+        }
+        Some(image::ImageFormat::Png | image::ImageFormat::Bmp | image::ImageFormat::Gif) => {}
+        // A JPEG's blocks would blur every edge a check reads; other formats
+        // are not built in.
+        Some(f) => {
+            let name = format!("{f:?}").to_uppercase();
+            return Err(format!(
+                "a {name} image, which is not read: save the screenshot as PNG (a JPEG's compression also blurs the edges a check compares)"
+            ));
+        }
     }
     reader.into_dimensions().map_err(|e| e.to_string())
 }
