@@ -7,6 +7,7 @@ use super::image::{
     direct_pass, errors, largest_difference, measure, predict, predicted, where_off, Errors,
     Fitted, Hypothesis, ImageCheck, Measured, Setup, Shading, LAB3_SHARE, NONE, PI_314, THRESHOLD,
 };
+use super::probe::{LightProbe, COARSE_STRIDE, LIGHT_STRIDE};
 use crate::pipeline::target::unpack;
 use crate::pipeline::Frame;
 use crate::pipeline::StageName;
@@ -23,40 +24,47 @@ pub(super) fn fit_light(
     rho_squared: bool,
     power: Option<f32>,
     indirect: Option<f32>,
-    stride: usize,
+    pixels: Option<&[usize]>,
 ) -> (f32, f32) {
     let offset = if truncated { 0.5 } else { 0.0 };
     let handout = Shading::handout();
     let mut estimate: Option<(f64, f64)> = None;
     for _ in 0..2 {
-        let (mut saa, mut sab, mut sbb, mut say, mut sby) = (0.0, 0.0, 0.0, 0.0, 0.0);
-        for i in (0..observed.color.len()).step_by(stride) {
+        // saa, sab, sbb, say, sby: the normal equations' sums.
+        let mut sums = [0.0f64; 5];
+        let mut add = |i: usize| {
             let s = m.surface[i];
             if !m.interior[i] || s == NONE {
-                continue;
+                return;
             }
             let rho = m.surfaces[s as usize].0;
             let rho = if rho_squared { rho * rho } else { rho }.to_array();
             let o = unpack(observed.color[i]);
+            let d = m.direct[i] as f64;
             for k in 0..3 {
                 if o[k] == 0 || o[k] == 255 {
                     continue; // clamped: says only "at least" or "at most"
                 }
-                let a = rho[k] as f64 * m.direct[i] as f64;
                 let b = rho[k] as f64;
-                let y = (o[k] as f64 + offset) / 255.0;
+                let a = b * d;
+                let y = (o[k] as f64 + offset) * (1.0 / 255.0);
                 if let Some((p, n)) = estimate {
-                    if ((a * p + b * n - y) * 255.0).abs() > 3.0 {
+                    if (a * p + b * n - y).abs() > 3.0 / 255.0 {
                         continue;
                     }
                 }
-                saa += a * a;
-                sab += a * b;
-                sbb += b * b;
-                say += a * y;
-                sby += b * y;
+                sums[0] += a * a;
+                sums[1] += a * b;
+                sums[2] += b * b;
+                sums[3] += a * y;
+                sums[4] += b * y;
             }
+        };
+        match pixels {
+            Some(listed) => listed.iter().for_each(|&i| add(i)),
+            None => (0..observed.color.len()).for_each(&mut add),
         }
+        let [saa, sab, sbb, say, sby] = sums;
         // Light is never negative: each unknown is at least 0, and where the
         // free solution has one below, the best on that edge of the quadrant
         // (the other unknown alone) is taken instead.
@@ -123,7 +131,7 @@ pub(super) fn best_shading(
             rho_squared,
             setup.power,
             setup.indirect,
-            1,
+            None,
         );
         let fitted = Shading {
             power: p,
@@ -219,7 +227,7 @@ fn fitted(
                 rho_squared,
                 setup.power,
                 setup.indirect,
-                1,
+                None,
             );
             Shading {
                 power,
@@ -335,24 +343,27 @@ pub(super) fn climb(start: Fitted, observed: &Frame, setup: &Setup) -> Fitted {
     }
 }
 
-/// Every [`LIGHT_STRIDE`]th pixel is enough to place the light: the interiors
-/// of 500 x 500 screenshot still give 40 000 of them.
-const LIGHT_STRIDE: usize = 4;
-
 /// How well the light at `light` explains the interiors under `shapes`' surfaces
-/// and packing, P and N fitted: the interior RMSE over every [`LIGHT_STRIDE`]th pixel.
-fn light_score(shapes: &Fitted, observed: &Frame, setup: &Setup, light: Vec3) -> f64 {
-    let mut m = shapes.measured.clone();
-    m.direct = direct_pass(shapes.hypothesis, &setup.mesh, &setup.camera, light);
+/// and packing, P and N fitted: the interior RMSE over every [`LIGHT_STRIDE`]th
+/// pixel, with the direct light from `probe` (`shapes`' own).
+fn light_score(
+    probe: &mut LightProbe,
+    shapes: &Fitted,
+    observed: &Frame,
+    setup: &Setup,
+    light: Vec3,
+) -> f64 {
+    probe.light_at(light);
+    let m = &probe.measured;
     let (truncated, rho_squared) = (shapes.shading.truncated, shapes.shading.rho_squared);
     let (power, indirect) = fit_light(
-        &m,
+        m,
         observed,
         truncated,
         rho_squared,
         setup.power,
         setup.indirect,
-        LIGHT_STRIDE,
+        Some(&probe.pixels),
     );
     let shading = Shading {
         power,
@@ -362,12 +373,9 @@ fn light_score(shapes: &Fitted, observed: &Frame, setup: &Setup, light: Vec3) ->
         ..Shading::handout()
     };
     let (mut sum, mut count) = (0u64, 0u64);
-    for i in (0..observed.color.len()).step_by(LIGHT_STRIDE) {
-        if !m.interior[i] {
-            continue;
-        }
+    for &i in &probe.pixels {
         let (a, b) = (
-            unpack(predict(&m, i, true, shading)),
+            unpack(predict(m, i, true, shading)),
             unpack(observed.color[i]),
         );
         for k in 0..3 {
@@ -395,11 +403,8 @@ pub(super) fn search_light(
     first_step: f32,
     max_tries: usize,
 ) -> Fitted {
-    let mut tries = 0;
-    let mut score = |light: Vec3| {
-        tries += 1;
-        light_score(&start, observed, setup, light)
-    };
+    let mut probe = LightProbe::of(&start, setup, LIGHT_STRIDE);
+    let mut score = |light: Vec3| light_score(&mut probe, &start, observed, setup, light);
     // The best of `from` and its neighbours `step` away along each axis.
     let explore = |from: (Vec3, f64), step: f32, score: &mut dyn FnMut(Vec3) -> f64| {
         let mut best = from;
@@ -454,15 +459,16 @@ fn coarse_light(observed: &Frame, setup: &Setup, start: Fitted) -> (Fitted, f64)
     let xs = [-0.8, -0.4, 0.0, 0.4, 0.8];
     let ys = [-0.9, -0.5, -0.1, 0.3, 0.7];
     let zs = [-2.0, -1.2, -0.6, 0.0, 0.6];
+    let mut probe = LightProbe::of(&start, setup, COARSE_STRIDE);
     let mut best = (
         start.light,
-        light_score(&start, observed, setup, start.light),
+        light_score(&mut probe, &start, observed, setup, start.light),
     );
     for &x in &xs {
         for &y in &ys {
             for &z in &zs {
                 let light = Vec3::new(x, y, z);
-                let e = light_score(&start, observed, setup, light);
+                let e = light_score(&mut probe, &start, observed, setup, light);
                 if e < best.1 {
                     best = (light, e);
                 }

@@ -241,7 +241,13 @@ fn draw<S: Stage, I: Interpolation>(
 }
 
 /// [`draw`] with the per-pixel struct interpolated affinely or perspective-correctly.
-fn draw_as<S: Stage>(g: Geometry, stage: &S, affine: bool, mesh: &Mesh, camera: &Camera) -> Frame {
+pub(super) fn draw_as<S: Stage>(
+    g: Geometry,
+    stage: &S,
+    affine: bool,
+    mesh: &Mesh,
+    camera: &Camera,
+) -> Frame {
     match affine {
         true => draw::<_, Affine>(g, stage, mesh, camera),
         false => draw::<_, Perspective>(g, stage, mesh, camera),

@@ -14,6 +14,7 @@ pub mod fit;
 pub mod image;
 pub mod locate;
 pub mod pose;
+pub mod probe;
 pub mod report;
 pub mod rows;
 pub mod student;

@@ -209,6 +209,56 @@ impl<const DEPTH: bool> Stage for DirectPerVertex<DEPTH> {
     }
 }
 
+/// How far below zero a coordinate [`WorldAxis`] draws may be: the box spans
+/// -1 to 1, and [`DIRECT_RANGE`] leaves room either side.
+pub const AXIS_OFFSET: f32 = 2.0;
+
+/// One coordinate (`AXIS`: 0 x, 1 y, 2 z) of the interpolated 3D position at
+/// each pixel, plus [`AXIS_OFFSET`], encoded: where the light falls, drawn once
+/// so that any light is then worked out without drawing.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct WorldAxis<const DEPTH: bool, const AXIS: usize>;
+
+impl<const DEPTH: bool, const AXIS: usize> Stage for WorldAxis<DEPTH, AXIS> {
+    type Varying = crate::pipeline::stage::Position;
+    const PRIMITIVE: Primitive = Primitive::Polygons;
+    const DEPTH_TEST: bool = DEPTH;
+
+    fn vertex_shader(&self, vertex: &Vertex, _: &Surface) -> Self::Varying {
+        crate::pipeline::stage::Position {
+            world: vertex.position,
+        }
+    }
+
+    fn pixel_shader(&self, varying: &Self::Varying, _: &Surface) -> Vec3 {
+        encode(varying.world[AXIS] + AXIS_OFFSET)
+    }
+}
+
+/// The index of the face each pixel shows, plus one (0 is no face), encoded in
+/// the colour's 24 bits.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct FaceIndex<const DEPTH: bool>;
+
+impl<const DEPTH: bool> Stage for FaceIndex<DEPTH> {
+    type Varying = Nothing;
+    const PRIMITIVE: Primitive = Primitive::Polygons;
+    const DEPTH_TEST: bool = DEPTH;
+
+    fn vertex_shader(&self, _: &Vertex, _: &Surface) -> Nothing {
+        Nothing {}
+    }
+
+    fn pixel_shader(&self, _: &Nothing, surface: &Surface) -> Vec3 {
+        let k = surface.face + 1;
+        Vec3::new(
+            (k >> 16 & 0xff) as f32 / 255.0,
+            (k >> 8 & 0xff) as f32 / 255.0,
+            (k & 0xff) as f32 / 255.0,
+        )
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
