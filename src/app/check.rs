@@ -71,6 +71,62 @@ pub fn read_screenshot(path: &Path) -> Result<Frame, String> {
 /// and more.
 const MIN_POSE_SCORE: f64 = 0.97;
 
+/// Below this share of the walls' pixels in place from the given camera, the
+/// camera is fitted before anything else: the handout's images from the
+/// handout's pose have 99 % and more, even with a slip (a flip moves the
+/// blocks only, a swap two walls).
+const CAMERA_ELSEWHERE: f64 = 0.7;
+
+/// The camera that puts the walls of `observed` in place, with its focal length
+/// unless `options` give it (the height, as the handout has it, the width, or
+/// rasterlab's 500), as the setup to check from and the note that says so;
+/// `None` when no pose puts [`MIN_POSE_SCORE`] of them in place.
+fn fit_camera(observed: &Frame, setup: &Setup, options: &CheckOptions) -> Option<(Setup, String)> {
+    let (w, h) = (observed.width, observed.height);
+    let mut focals = vec![setup.camera.focal];
+    if options.focal.is_none() {
+        for f in [w as f32, 500.0] {
+            if !focals.contains(&f) {
+                focals.push(f);
+            }
+        }
+    }
+    let pose = focals
+        .iter()
+        .map(|&focal| {
+            let start = Camera {
+                focal,
+                ..setup.camera
+            };
+            fit_pose(observed, start)
+        })
+        .max_by(|a, b| a.score.total_cmp(&b.score))?;
+    // A pose that puts fewer walls in place is a search that found nothing.
+    if pose.score < MIN_POSE_SCORE {
+        return None;
+    }
+    let c = pose.camera;
+    let focal = match c.focal == h as f32 {
+        true => String::new(),
+        false => format!(" --focal {}", c.focal),
+    };
+    let note = format!(
+        "the camera is not at the handout's place; fitted at --camera {},{},{} --yaw {} --pitch {}{focal} ({:.1} % of the walls' colours in place); no variant was looked for on its edges, which a fitted camera places only to a fraction of a pixel",
+        round3(c.position.x),
+        round3(c.position.y),
+        round3(c.position.z),
+        round3(c.yaw.to_degrees()),
+        round3(c.pitch.to_degrees()),
+        pose.score * 100.0
+    );
+    let moved = Setup {
+        camera: c,
+        edges_exact: false,
+        ..setup.clone()
+    };
+    Some((moved, note))
+}
+
 /// How much larger a share of the walls' pixels undoing a slip must put in
 /// place for the slip to be checked: a swap, a flip or a gamma undone where it
 /// was not made moves walls out of place, and one undone where it was made puts
@@ -194,7 +250,6 @@ fn check_image_named(
     setup.indirect = options.indirect;
     setup.fit_light = options.fit_light;
     setup.edges_exact = !blended;
-    let mut check = check_image(&observed, &setup);
     // Mostly black: points, lines, or nothing; there are no walls to place.
     let lit = observed
         .color
@@ -205,6 +260,33 @@ fn check_image_named(
     let walls_before = match has_walls {
         true => walls_in_place(&observed, &setup.camera),
         false => 0.0,
+    };
+    // Walls far from where the given camera sees them: the camera is fitted
+    // first, sparing a whole check from a pose the image was not taken from.
+    // (rasterlab's own focal length of 500 from the handout's place is not
+    // elsewhere: a later step names it.)
+    let at_500 = Camera {
+        focal: 500.0,
+        ..setup.camera
+    };
+    let elsewhere = has_walls
+        && options.camera.is_none()
+        && walls_before < CAMERA_ELSEWHERE
+        && (options.focal.is_some() || walls_in_place(&observed, &at_500) < CAMERA_ELSEWHERE);
+    let early = elsewhere
+        .then(|| fit_camera(&observed, &setup, options))
+        .flatten()
+        .map(|(moved, note)| (check_image(&observed, &moved), moved, note))
+        .filter(|(check, _, _)| lab3(check));
+    let mut check = match early {
+        Some((mut check, moved, note)) => {
+            check.notes.push(note);
+            check.camera = Some(moved.camera);
+            check.adjusted = true;
+            setup = moved;
+            check
+        }
+        None => check_image(&observed, &setup),
     };
     // Slips that hide a lab 3 image, tried in turn; the first whose check
     // `accept`s is kept, with the image and setup it was checked with (so the
@@ -271,49 +353,9 @@ fn check_image_named(
     // A screenshot taken after walking around: the camera fitted to the
     // walls' colours, then the whole check from there (not on an image almost
     // all black: there are no walls to place).
-    if !explained(&check) && options.camera.is_none() && has_walls {
-        // The focal length, unless given: the height (the handout's), the
-        // width, or rasterlab's 500, whichever puts the most walls in place.
-        let mut focals = vec![setup.camera.focal];
-        if options.focal.is_none() {
-            for f in [w as f32, 500.0] {
-                if !focals.contains(&f) {
-                    focals.push(f);
-                }
-            }
-        }
-        let pose = focals
-            .iter()
-            .map(|&focal| {
-                fit_pose(
-                    &observed,
-                    Camera {
-                        focal,
-                        ..setup.camera
-                    },
-                )
-            })
-            .max_by(|a, b| a.score.total_cmp(&b.score))
-            .expect("one focal length");
-        // A pose that puts fewer walls in place is a search that found nothing.
-        if pose.score >= MIN_POSE_SCORE {
-            let mut moved = setup.clone();
-            moved.camera = pose.camera;
-            moved.edges_exact = false;
-            let c = pose.camera;
-            let focal = match c.focal == h as f32 {
-                true => String::new(),
-                false => format!(" --focal {}", c.focal),
-            };
-            let note = format!(
-                "the camera is not at the handout's place; fitted at --camera {},{},{} --yaw {} --pitch {}{focal} ({:.1} % of the walls' colours in place); no variant was looked for on its edges, which a fitted camera places only to a fraction of a pixel",
-                round3(c.position.x),
-                round3(c.position.y),
-                round3(c.position.z),
-                round3(c.yaw.to_degrees()),
-                round3(c.pitch.to_degrees()),
-                pose.score * 100.0
-            );
+    if check.camera.is_none() && !explained(&check) && options.camera.is_none() && has_walls {
+        if let Some((moved, note)) = fit_camera(&observed, &setup, options) {
+            let c = moved.camera;
             if let Some((_, tried)) = attempt(observed.clone(), moved, note, lab3, &mut check) {
                 check.camera = Some(c);
                 check.adjusted = true;
