@@ -91,16 +91,7 @@ fn fit_camera(observed: &Frame, setup: &Setup, options: &CheckOptions) -> Option
             }
         }
     }
-    let pose = focals
-        .iter()
-        .map(|&focal| {
-            let start = Camera {
-                focal,
-                ..setup.camera
-            };
-            fit_pose(observed, start)
-        })
-        .max_by(|a, b| a.score.total_cmp(&b.score))?;
+    let pose = fit_pose(observed, setup.camera, &focals);
     // A pose that puts fewer walls in place is a search that found nothing.
     if pose.score < MIN_POSE_SCORE {
         return None;

@@ -205,6 +205,8 @@ fn simplex(
 /// each of the box's chromaticities), how far each pixel of an image `scale`
 /// times smaller is from the nearest pixel of that class.
 struct Level {
+    /// How many times smaller than the screenshot.
+    scale: f32,
     camera: Camera,
     /// Per class, per pixel: the distance in pixels, at most [`REACH`].
     near: Vec<Vec<f32>>,
@@ -277,6 +279,7 @@ impl Level {
             .map(|k| distances(&class, w, h, k as u8))
             .collect();
         Level {
+            scale: scale as f32,
             camera,
             near,
             class,
@@ -349,8 +352,9 @@ pub fn walls_in_place(observed: &Frame, camera: &Camera) -> f64 {
 }
 
 /// The pose that best explains `observed`, searched from `start` (whose image
-/// size and focal length are kept).
-pub fn fit_pose(observed: &Frame, start: Camera) -> Pose {
+/// size is kept) with each of `focals` (the best of which is kept: each one
+/// gets the coarse grid, and the best starts of all are refined).
+pub fn fit_pose(observed: &Frame, start: Camera, focals: &[f32]) -> Pose {
     let mesh = cornell_box();
     // One pipeline and one frame for the whole search, drawn into again and
     // again (a few thousand poses).
@@ -360,9 +364,13 @@ pub fn fit_pose(observed: &Frame, start: Camera) -> Pose {
     // The score: per pixel drawn, 1 where the screenshot's pixel is of its
     // class, falling to 0 at REACH pixels from the nearest one that is. With
     // `count`, the plain share of pixels of the same class instead.
-    let draw_at = |level: &Level, p: Orbit, count: bool| -> f64 {
+    let draw_at = |level: &Level, p: Orbit, focal: f32, count: bool| -> f64 {
         let mut drawn = frame.borrow_mut();
-        let camera = camera_of(p, &level.camera);
+        let at = Camera {
+            focal: focal / level.scale,
+            ..level.camera
+        };
+        let camera = camera_of(p, &at);
         pipeline
             .borrow_mut()
             .render(&Depth, &mesh, &camera, &mut drawn);
@@ -382,7 +390,7 @@ pub fn fit_pose(observed: &Frame, start: Camera) -> Pose {
         }
         sum / level.class.len() as f64
     };
-    let score_at = |level: &Level, p: Orbit| draw_at(level, p, false);
+    let score_at = |level: &Level, p: Orbit, focal: f32| draw_at(level, p, focal, false);
     let short = start.width.min(start.height);
     let mut scales = vec![1u32];
     while short / (scales[0] * 2) >= COARSE_SIDE {
@@ -394,14 +402,17 @@ pub fn fit_pose(observed: &Frame, start: Camera) -> Pose {
         .collect();
     let coarse = &levels[0];
     let given = orbit_of(&start);
-    let mut starts = vec![(given, score_at(coarse, given))];
-    for d in [4.0, 4.5, 5.0, 6.0, 7.0, 9.0, 12.0, 16.0] {
-        for yaw in [-20.0, -10.0, 0.0, 10.0, 20.0] {
-            for pitch in [-8.0, 0.0, 8.0] {
-                for a in [-0.3, -0.15, 0.0, 0.15, 0.3] {
-                    for b in [-0.15, 0.0, 0.15] {
-                        let p = [a, b, d, yaw, pitch];
-                        starts.push((p, score_at(coarse, p)));
+    let mut starts = Vec::new();
+    for &focal in focals {
+        starts.push((given, score_at(coarse, given, focal), focal));
+        for d in [4.0, 4.5, 5.0, 6.0, 7.0, 9.0, 12.0, 16.0] {
+            for yaw in [-20.0, -10.0, 0.0, 10.0, 20.0] {
+                for pitch in [-8.0, 0.0, 8.0] {
+                    for a in [-0.3, -0.15, 0.0, 0.15, 0.3] {
+                        for b in [-0.15, 0.0, 0.15] {
+                            let p = [a, b, d, yaw, pitch];
+                            starts.push((p, score_at(coarse, p, focal), focal));
+                        }
                     }
                 }
             }
@@ -411,17 +422,20 @@ pub fn fit_pose(observed: &Frame, start: Camera) -> Pose {
     // The steps that finish one level start the next, finer one: each level
     // halves them as often as it is coarser than the last.
     let halvings = 2;
-    let best = starts
+    let (best, focal) = starts
         .iter()
         .take(STARTS)
-        .map(|&s| refine(s, FIRST_STEPS, halvings, &|p| score_at(coarse, p)))
-        .max_by(|a, b| a.1.total_cmp(&b.1))
+        .map(|&(p, e, f)| {
+            let refined = refine((p, e), FIRST_STEPS, halvings, &|p| score_at(coarse, p, f));
+            (refined, f)
+        })
+        .max_by(|a, b| a.0 .1.total_cmp(&b.0 .1))
         .expect("at least one start");
     let mut steps = FIRST_STEPS.map(|s| s / (1 << halvings) as f32);
     let mut best = best;
     for level in &levels[1..] {
-        best = refine((best.0, score_at(level, best.0)), steps, 1, &|p| {
-            score_at(level, p)
+        best = refine((best.0, score_at(level, best.0, focal)), steps, 1, &|p| {
+            score_at(level, p, focal)
         });
         steps = steps.map(|s| s / 2.0);
     }
@@ -429,17 +443,20 @@ pub fn fit_pose(observed: &Frame, start: Camera) -> Pose {
     let full = levels.last().expect("at least one level");
     let left = (steps[2] / 0.001).log2().ceil().max(0.0) as u32;
     if levels.len() > 1 || left > 0 {
-        best = refine((best.0, score_at(full, best.0)), steps, left, &|p| {
-            score_at(full, p)
+        best = refine((best.0, score_at(full, best.0, focal)), steps, left, &|p| {
+            score_at(full, p, focal)
         });
     }
     // A simplex, restarted once around its best: a fresh simplex turns to a
     // ridge the first one had flattened against.
     for size in [16.0, 4.0] {
-        best = simplex(best, steps.map(|s| s * size), 150, &|p| score_at(full, p));
+        best = simplex(best, steps.map(|s| s * size), 150, &|p| {
+            score_at(full, p, focal)
+        });
     }
+    let start = Camera { focal, ..start };
     Pose {
         camera: camera_of(best.0, &start),
-        score: draw_at(full, best.0, true),
+        score: draw_at(full, best.0, focal, true),
     }
 }
