@@ -126,7 +126,7 @@ const SLIP_GAIN: f64 = 0.01;
 
 /// `v` to three decimals, as the options that reproduce a pose are written.
 fn round3(v: f32) -> f32 {
-    (v * 1000.0).round() / 1000.0
+    (v * 1000.0).round() / 1000.0 + 0.0 // -0 is 0
 }
 
 /// `frame` with its red and blue channels exchanged.
@@ -344,7 +344,8 @@ fn check_image_named(
     // A screenshot taken after walking around: the camera fitted to the
     // walls' colours, then the whole check from there (not on an image almost
     // all black: there are no walls to place).
-    if check.camera.is_none() && !explained(&check) && options.camera.is_none() && has_walls {
+    // (Not again where it was fitted first and found nothing better.)
+    if !elsewhere && !explained(&check) && options.camera.is_none() && has_walls {
         if let Some((moved, note)) = fit_camera(&observed, &setup, options) {
             let c = moved.camera;
             if let Some((_, tried)) = attempt(observed.clone(), moved, note, lab3, &mut check) {

@@ -43,6 +43,7 @@ const MIN_SCORE: f64 = 0.9;
 /// The render inside `shot`, if `shot` holds one with a frame around it (see the
 /// module's rules); `None` when it is a plain render or holds none.
 pub fn locate(shot: &Frame) -> Option<Located> {
+    let mut figures = Figures::default();
     let mut best: Option<(f64, u32, u32, u32, u32)> = None; // score, scale, side, x, y
     for scale in [1u32, 2] {
         let image = match scale {
@@ -56,9 +57,10 @@ pub fn locate(shot: &Frame) -> Option<Located> {
             if scale == 1 && side > MAX_FULL_SIDE {
                 continue;
             }
-            let (figures, points) = (figures_at(side), sample_points(side));
+            let points = sample_points(side);
+            let at_side = figures.at(side);
             for (x, y) in positions(&image, side, x, y) {
-                let score = score(&image, x, y, &points, &figures);
+                let score = score(&image, x, y, &points, at_side);
                 if best.is_none_or(|b| score > b.0) {
                     best = Some((score, scale, side, x, y));
                 }
@@ -69,7 +71,7 @@ pub fn locate(shot: &Frame) -> Option<Located> {
     let image = if scale == 1 { shot.clone() } else { half(shot) };
     // The samples cannot tell a square one pixel off (a row of the title bar
     // in, a row of the render out); every pixel can.
-    let (side, x, y) = polish(&image, side, x, y);
+    let (side, x, y) = polish(&image, side, x, y, &mut figures);
     let whole = (x, y, side, side) == (0, 0, image.width, image.height);
     if score < MIN_SCORE || (whole && scale == 1) {
         return None;
@@ -191,17 +193,17 @@ fn coloured_bounds(image: &Frame) -> Option<[u32; 4]> {
 
 /// The square within a pixel of (`side`, `x`, `y`) whose pixels are nearest the
 /// best figure's: the most within 16/255.
-fn polish(image: &Frame, side: u32, x: u32, y: u32) -> (u32, u32, u32) {
+fn polish(image: &Frame, side: u32, x: u32, y: u32, figures: &mut Figures) -> (u32, u32, u32) {
     let mut best = (0usize, side, x, y);
     for s in side.saturating_sub(1).max(16)..=side + 1 {
         if s > image.width || s > image.height {
             continue;
         }
-        let figures = figures_at(s);
+        let drawn = figures.at(s);
         let around = |v: u32, most: u32| v.saturating_sub(1)..=(v + 1).min(most);
         for v in around(y, image.height - s) {
             for u in around(x, image.width - s) {
-                let near = figures
+                let near = drawn
                     .iter()
                     .map(|f| {
                         (0..s)
@@ -218,6 +220,17 @@ fn polish(image: &Frame, side: u32, x: u32, y: u32) -> (u32, u32, u32) {
         }
     }
     (best.1, best.2, best.3)
+}
+
+/// The handout's figures at each side drawn so far: the search and its
+/// polish ask for the same sides again.
+#[derive(Default)]
+struct Figures(std::collections::HashMap<u32, Vec<Frame>>);
+
+impl Figures {
+    fn at(&mut self, side: u32) -> &[Frame] {
+        self.0.entry(side).or_insert_with(|| figures_at(side))
+    }
 }
 
 /// The handout's seven figures at `side` x `side`, focal length `side`.

@@ -254,10 +254,10 @@ impl Classes {
 
 impl Level {
     fn new(observed: &Frame, start: &Camera, scale: u32, classes: &Classes) -> Level {
+        // The focal length is each pose's own, divided by `scale` as drawn.
         let camera = Camera {
             width: (start.width / scale).max(1),
             height: (start.height / scale).max(1),
-            focal: start.focal / scale as f32,
             ..*start
         };
         // Pixel i's centre, measured from the small image's centre, scaled up

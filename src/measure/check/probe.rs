@@ -25,8 +25,8 @@ pub const COARSE_STRIDE: usize = 16;
 enum Source {
     /// A point and its normal: light per pixel.
     Point(Vec3, Vec3),
-    /// Three corners (position, normal) and their weights: light per vertex.
-    Corners([(Vec3, Vec3, f32); 3]),
+    /// A face and its three corners' weights: light per vertex.
+    Corners(u32, [f32; 3]),
 }
 
 /// A hypothesis' surfaces with their direct light worked out, at the sampled
@@ -37,6 +37,10 @@ pub struct LightProbe {
     /// The sampled pixels: every `stride`th interior one.
     pub pixels: Vec<usize>,
     sources: Vec<Source>,
+    /// Per face, its corners (position, normal): light per vertex only.
+    corners: Vec<[(Vec3, Vec3); 3]>,
+    /// Per face, the last light's direct light at its corners.
+    at_corners: Vec<[f32; 3]>,
 }
 
 impl LightProbe {
@@ -80,20 +84,30 @@ impl LightProbe {
                     let Some(face) = k.checked_sub(1).and_then(|k| mesh.faces.get(k)) else {
                         continue;
                     };
-                    let corners = [0, 1, 2].map(|c| mesh.vertex(face, c));
-                    let w = barycentric(p, corners.map(|v| v.position));
-                    Source::Corners(
-                        [0, 1, 2].map(|c| (corners[c].position, corners[c].normal, w[c])),
-                    )
+                    let corners = [0, 1, 2].map(|c| mesh.vertex(face, c).position);
+                    Source::Corners(k as u32 - 1, barycentric(p, corners))
                 }
             };
             pixels.push(i);
             sources.push(source);
         }
+        let corners: Vec<[(Vec3, Vec3); 3]> = match per_vertex {
+            true => (mesh.faces.iter())
+                .map(|f| {
+                    [0, 1, 2].map(|c| {
+                        let v = mesh.vertex(f, c);
+                        (v.position, v.normal)
+                    })
+                })
+                .collect(),
+            false => Vec::new(),
+        };
         LightProbe {
             measured: measured.clone(),
             pixels,
             sources,
+            at_corners: vec![[0.0; 3]; corners.len()],
+            corners,
         }
     }
 
@@ -115,10 +129,17 @@ impl LightProbe {
             power: Vec3::ONE,
             indirect: Vec3::ZERO,
         };
+        // Light per vertex: eq. 10 once per corner, as the vertex shader has it.
+        for (at, corners) in self.at_corners.iter_mut().zip(&self.corners) {
+            *at = corners.map(|(p, n)| light.direct(p, n).x);
+        }
         for (&i, &source) in self.pixels.iter().zip(&self.sources) {
             self.measured.direct[i] = match source {
                 Source::Point(p, n) => light.direct(p, n).x,
-                Source::Corners(c) => c.iter().map(|&(p, n, w)| w * light.direct(p, n).x).sum(),
+                Source::Corners(face, w) => {
+                    let d = self.at_corners[face as usize];
+                    w[0] * d[0] + w[1] * d[1] + w[2] * d[2]
+                }
             };
         }
     }
