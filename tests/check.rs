@@ -1433,6 +1433,120 @@ fn a_moved_camera_is_found() {
     }
 }
 
+/// A walked-around camera inside a window (a title bar with a caption, and
+/// borders) and on a desktop: the render is found by its frame, since it is not
+/// the handout's figure, and its pose is then fitted as for a plain render.
+#[test]
+fn a_moved_camera_is_found_inside_a_window() {
+    use rasterlab::app::check::{check_image_file, CheckOptions};
+    use rasterlab::app::{self as app, image_io::write_image, Settings};
+    use rasterlab::{Figure, StageName};
+    let dir = temp_dir("check-moved-window");
+    let walked = Settings {
+        camera: rasterlab::Camera {
+            position: Vec3::new(0.3, -0.2, -3.5),
+            yaw: 10f32.to_radians(),
+            pitch: 5f32.to_radians(),
+            ..rasterlab::Camera::handout(500, 500)
+        },
+        ..Settings::default()
+    };
+    let (lit, _) = app::render(
+        Figure::of(StageName::PixelLight),
+        &cornell_box(),
+        &walked,
+        None,
+    );
+    let mut window = in_window(&lit, 30, 4, 1);
+    // A caption: dark strokes across the middle of the bar.
+    for y in 10..20 {
+        for x in (200..300).filter(|x| x % 7 < 3) {
+            window.color[(y * window.width + x) as usize] = 0x0020_2020;
+        }
+    }
+    let mut desktop = Frame::new(1280, 800);
+    for (i, c) in desktop.color.iter_mut().enumerate() {
+        let (x, y) = (i as u32 % 1280, i as u32 / 1280);
+        *c = (30 + y * 60 / 800) << 16 | (60 + x * 40 / 1280) << 8 | 140;
+    }
+    for y in 0..window.height {
+        for x in 0..window.width {
+            desktop.color[((y + 100) * 1280 + x + 200) as usize] =
+                window.color[(y * window.width + x) as usize];
+        }
+    }
+    let cases = [
+        ("window.png", window, [4, 30], "the render is the 500x500 rectangle at (4, 30) of this 508x534 screenshot, inside its frame; left out: 30 pixels above, 4 pixels below, 4 pixels left of, 4 pixels right of (a window's title bar and borders)"),
+        ("desktop.png", desktop, [204, 130], "the render is the 500x500 rectangle at (204, 130) of this 1280x800 screenshot, inside its frame; left out: 130 pixels above, 170 pixels below, 204 pixels left of, 576 pixels right of (the window's title bar and borders, and the desktop around it)"),
+    ];
+    for (name, shot, [x, y], note) in cases {
+        write_image(&shot, &dir.join(name)).unwrap();
+        let (check, _) = check_image_file(&dir.join(name), &CheckOptions::default()).unwrap();
+        assert_eq!(check.notes[0], note, "{name}");
+        assert_eq!(check.crop, Some([x, y, 500, 500]), "{name}");
+        let f = check.fitted.as_ref().expect(name);
+        assert_eq!((f.hypothesis.figure(), f.variants()), (7, vec![]), "{name}");
+        let c = check.camera.expect("a fitted camera");
+        let off = (c.position - walked.camera.position).abs();
+        assert!(off.max_element() < 0.02, "{name}: {c:?}");
+        assert!((c.yaw.to_degrees() - 10.0).abs() < 0.5, "{name}: {c:?}");
+        assert!((c.pitch.to_degrees() - 5.0).abs() < 0.5, "{name}: {c:?}");
+    }
+    // The same render plain, and the handout's pose pulled back into a black
+    // frame, are not cut: their black is their own.
+    let far = Settings {
+        camera: rasterlab::Camera {
+            position: Vec3::new(0.0, 0.0, -6.0),
+            ..rasterlab::Camera::handout(640, 480)
+        },
+        ..Settings::default()
+    };
+    for (name, frame) in [
+        ("plain.png", lit),
+        (
+            "far.png",
+            app::render(Figure::of(StageName::Depth), &cornell_box(), &far, None).0,
+        ),
+    ] {
+        write_image(&frame, &dir.join(name)).unwrap();
+        let (check, _) = check_image_file(&dir.join(name), &CheckOptions::default()).unwrap();
+        assert_eq!(check.crop, None, "{name}");
+        assert!(check.fitted.is_some(), "{name}");
+    }
+}
+
+/// A render shrunk to half is checked doubled; its interiors, means of four
+/// pixels, are too rough to tell π as 3.14 from π, so neither is named.
+#[test]
+fn a_shrunk_render_names_no_shading_variant() {
+    use rasterlab::app::check::{check_image_file, CheckOptions};
+    use rasterlab::app::{self as app, image_io::write_image, Settings};
+    use rasterlab::{Figure, StageName};
+    let dir = temp_dir("check-shrunk-light");
+    for (stage, figure) in [(StageName::VertexLight, 6), (StageName::PixelLight, 7)] {
+        let (frame, _) = app::render(
+            Figure::of(stage),
+            &cornell_box(),
+            &Settings::default(),
+            None,
+        );
+        let shot = dir.join("shrunk.png");
+        write_image(&halved(&frame), &shot).unwrap();
+        let (check, _) = check_image_file(&shot, &CheckOptions::default()).unwrap();
+        let f = check.fitted.as_ref().expect("a lab 3 image");
+        assert_eq!(
+            (f.hypothesis.figure(), f.variants()),
+            (figure, vec![]),
+            "{stage:?}"
+        );
+        assert!(
+            (f.shading.power - 1.1).abs() < 0.011,
+            "{stage:?}: {:?}",
+            f.shading
+        );
+    }
+}
+
 /// `--stage pixel-light` on Figure 4 is contradicted, not forced into "Figure 7
 /// at light power 0": the report says so and names what the image is; the exit
 /// status says it is not what was asked.

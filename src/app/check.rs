@@ -4,7 +4,7 @@
 use crate::app::image_io::{write_image, WriteError};
 use crate::measure::check::check_image;
 use crate::measure::check::image::{ImageCheck, Setup};
-use crate::measure::check::locate::{doubled, locate, shrunk};
+use crate::measure::check::locate::{doubled, locate, locate_by_frame, shrunk};
 use crate::measure::check::pose::{fit_pose, walls_in_place};
 use crate::measure::check::rows::{check_rows, parse_rows_skipping, RowsCheck};
 use crate::measure::heat::heat_map_picture;
@@ -205,7 +205,9 @@ fn check_image_named(
     let fixed = options.size.is_some() || options.focal.is_some() || options.camera.is_some();
     let mut located = None;
     if !fixed && observed.width != observed.height {
-        located = locate(&observed);
+        // The handout's figures first; a camera moved elsewhere leaves the
+        // window's frame to find the render by.
+        located = locate(&observed).or_else(|| locate_by_frame(&observed));
     }
     if let Some(l) = &located {
         observed = l.frame.clone();
@@ -241,6 +243,7 @@ fn check_image_named(
     setup.indirect = options.indirect;
     setup.fit_light = options.fit_light;
     setup.edges_exact = !blended;
+    setup.resampled = blended;
     // Mostly black: points, lines, or nothing; there are no walls to place.
     let lit = observed
         .color

@@ -62,6 +62,9 @@ pub struct Setup {
     /// blends) nor for a fitted camera (within a fraction of a pixel). The
     /// variants, whose traces are on edges, are looked for only then.
     pub edges_exact: bool,
+    /// Whether the image was resampled (shrunk, and checked doubled): its
+    /// interiors are means of pixels, too rough to tell π as 3.14 from π.
+    pub resampled: bool,
 }
 
 impl Setup {
@@ -80,6 +83,7 @@ impl Setup {
             fit_light: false,
             stage: None,
             edges_exact: true,
+            resampled: false,
         }
     }
 }

@@ -85,31 +85,17 @@ pub fn locate(shot: &Frame) -> Option<Located> {
         shot.width - (x + side) * scale,
         shot.height - (y + side) * scale,
     );
-    let mut parts = Vec::new();
-    for (n, what) in [
-        (top, "above"),
-        (bottom, "below"),
-        (left, "left of"),
-        (right, "right of"),
-    ] {
-        if n > 0 {
-            let pixels = if n == 1 { "pixel" } else { "pixels" };
-            parts.push(format!("{n} {pixels} {what}"));
-        }
-    }
     let mut note = format!(
         "the render is the {0}x{0} square at ({left}, {top}) of this {1}x{2} screenshot",
         side * scale,
         shot.width,
         shot.height
     );
-    if !parts.is_empty() {
-        // Borders are a few pixels; anything wider beside or below is a desktop.
-        let what = match left.max(right).max(bottom) > 16 * scale {
-            true => "the window's title bar and borders, and the desktop around it",
-            false => "a window's title bar and borders",
-        };
-        note += &format!("; left out: {} ({what})", parts.join(", "));
+    if (left, top, right, bottom) != (0, 0, 0, 0) {
+        note += &format!(
+            "; left out: {}",
+            left_out([top, bottom, left, right], scale)
+        );
     }
     if scale == 2 {
         note += &format!("; it was halved to {side}x{side} (a HiDPI screenshot at twice the size)");
@@ -359,4 +345,118 @@ pub fn doubled(image: &Frame) -> Frame {
         }
     }
     out
+}
+
+/// The share of a side's pixels that must change across it for the side to be
+/// the render's edge: a window's frame against the render changes nearly all of
+/// them, a line inside the render (a wall's edge) only the part it spans.
+const FRAME_EDGE: f64 = 0.6;
+
+/// The render inside `shot` whatever the camera, found by its frame: the box's
+/// coloured walls lie inside the render, and each side of the render is either
+/// the screenshot's own edge or the nearest line beyond the walls across which
+/// the colour changes along most of the side to something not black (a wall's
+/// edge inside the render has the render's black beyond it; a window's title
+/// bar and borders are not black). `None` when that is the
+/// whole screenshot, when it is small, or when what it leaves out is black
+/// (the render's own bands).
+pub fn locate_by_frame(shot: &Frame) -> Option<Located> {
+    let [bx0, by0, bx1, by1] = coloured_bounds(shot)?;
+    let (w, h) = (shot.width, shot.height);
+    // From the render's pixel `inside` to the frame's `outside`.
+    let changes = |inside: [u8; 3], outside: [u8; 3]| {
+        outside != [0; 3] && (0..3).any(|k| inside[k].abs_diff(outside[k]) > 8)
+    };
+    // The share of the pixels in `along` that change from row `y - 1` to row
+    // `y`, or column `x - 1` to `x`, seen from the walls (`before`: the walls
+    // are past the line); the screenshot's edges count as lines.
+    let row_line = |y: u32, along: std::ops::Range<u32>, before: bool| -> f64 {
+        if y == 0 || y == h {
+            return 1.0;
+        }
+        let n = along.len().max(1);
+        let changed = along
+            .filter(|&x| match before {
+                true => changes(shot.rgb(x, y), shot.rgb(x, y - 1)),
+                false => changes(shot.rgb(x, y - 1), shot.rgb(x, y)),
+            })
+            .count();
+        changed as f64 / n as f64
+    };
+    let column_line = |x: u32, along: std::ops::Range<u32>, before: bool| -> f64 {
+        if x == 0 || x == w {
+            return 1.0;
+        }
+        let n = along.len().max(1);
+        let changed = along
+            .filter(|&y| match before {
+                true => changes(shot.rgb(x, y), shot.rgb(x - 1, y)),
+                false => changes(shot.rgb(x - 1, y), shot.rgb(x, y)),
+            })
+            .count();
+        changed as f64 / n as f64
+    };
+    let strong = |s: f64| s >= FRAME_EDGE;
+    let top = (0..=by0)
+        .rev()
+        .find(|&y| strong(row_line(y, bx0..bx1 + 1, true)))?;
+    let bottom = (by1 + 1..=h).find(|&y| strong(row_line(y, bx0..bx1 + 1, false)))?;
+    let left = (0..=bx0)
+        .rev()
+        .find(|&x| strong(column_line(x, top..bottom, true)))?;
+    let right = (bx1 + 1..=w).find(|&x| strong(column_line(x, top..bottom, false)))?;
+    // Each side must be an edge along the render's whole width or height, not
+    // only beside the walls.
+    let framed = strong(row_line(top, left..right, true))
+        && strong(row_line(bottom, left..right, false))
+        && strong(column_line(left, top..bottom, true))
+        && strong(column_line(right, top..bottom, false));
+    let (rw, rh) = (right - left, bottom - top);
+    if !framed || (rw, rh) == (w, h) || rw < 64 || rh < 64 {
+        return None;
+    }
+    let outside_black = (0..h).all(|y| {
+        (0..w).all(|x| {
+            (left..right).contains(&x) && (top..bottom).contains(&y) || shot.rgb(x, y) == [0; 3]
+        })
+    });
+    if outside_black {
+        return None;
+    }
+    let mut frame = Frame::new(rw, rh);
+    for y in 0..rh {
+        for x in 0..rw {
+            frame.color[(y * rw + x) as usize] = shot.color[((top + y) * w + left + x) as usize];
+        }
+    }
+    let note = format!(
+        "the render is the {rw}x{rh} rectangle at ({left}, {top}) of this {w}x{h} screenshot, inside its frame; left out: {}",
+        left_out([top, h - bottom, left, w - right], 1)
+    );
+    Some(Located {
+        frame,
+        note,
+        crop: [left, top, rw, rh],
+    })
+}
+
+/// What was cut from around the render, `[above, below, left, right]` pixels of
+/// the screenshot, in words: "30 pixels above (a window's title bar and borders)".
+fn left_out(around: [u32; 4], scale: u32) -> String {
+    let parts: Vec<String> = around
+        .iter()
+        .zip(["above", "below", "left of", "right of"])
+        .filter(|(&n, _)| n > 0)
+        .map(|(&n, what)| match n {
+            1 => format!("1 pixel {what}"),
+            _ => format!("{n} pixels {what}"),
+        })
+        .collect();
+    // Borders are a few pixels; anything wider beside or below is a desktop.
+    let [_, below, left, right] = around;
+    let what = match left.max(right).max(below) > 16 * scale {
+        true => "the window's title bar and borders, and the desktop around it",
+        false => "a window's title bar and borders",
+    };
+    format!("{} ({what})", parts.join(", "))
 }
