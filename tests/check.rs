@@ -1182,6 +1182,22 @@ fn in_window(frame: &Frame, bar: u32, border: u32, scale: u32) -> Frame {
     out
 }
 
+/// `window` at (`left`, `top`) of a 1280 x 800 desktop, a blue gradient.
+fn on_desktop(window: &Frame, left: u32, top: u32) -> Frame {
+    let mut desktop = Frame::new(1280, 800);
+    for (i, c) in desktop.color.iter_mut().enumerate() {
+        let (x, y) = (i as u32 % 1280, i as u32 / 1280);
+        *c = (30 + y * 60 / 800) << 16 | (60 + x * 40 / 1280) << 8 | 140;
+    }
+    for y in 0..window.height {
+        for x in 0..window.width {
+            desktop.color[((y + top) * 1280 + x + left) as usize] =
+                window.color[(y * window.width + x) as usize];
+        }
+    }
+    desktop
+}
+
 /// `frame` at half its size, each pixel the rounded mean of a 2 x 2 block.
 fn halved(frame: &Frame) -> Frame {
     let (w, h) = (frame.width / 2, frame.height / 2);
@@ -1250,18 +1266,7 @@ fn the_render_is_found_inside_a_window_screenshot() {
         );
     }
     // On a desktop: the window at (300, 120) of a 1280 x 800 blue gradient.
-    let mut desktop = Frame::new(1280, 800);
-    for (i, c) in desktop.color.iter_mut().enumerate() {
-        let (x, y) = (i as u32 % 1280, i as u32 / 1280);
-        *c = (30 + y * 60 / 800) << 16 | (60 + x * 40 / 1280) << 8 | 140;
-    }
-    let window = in_window(&lit, 30, 2, 1);
-    for y in 0..window.height {
-        for x in 0..window.width {
-            desktop.color[((y + 120) * 1280 + x + 300) as usize] =
-                window.color[(y * window.width + x) as usize];
-        }
-    }
+    let desktop = on_desktop(&in_window(&lit, 30, 2, 1), 300, 120);
     write_image(&desktop, &dir.join("desktop.png")).unwrap();
     let (check, _) = check_image_file(&dir.join("desktop.png"), &CheckOptions::default()).unwrap();
     assert_eq!(
@@ -1464,17 +1469,7 @@ fn a_moved_camera_is_found_inside_a_window() {
             window.color[(y * window.width + x) as usize] = 0x0020_2020;
         }
     }
-    let mut desktop = Frame::new(1280, 800);
-    for (i, c) in desktop.color.iter_mut().enumerate() {
-        let (x, y) = (i as u32 % 1280, i as u32 / 1280);
-        *c = (30 + y * 60 / 800) << 16 | (60 + x * 40 / 1280) << 8 | 140;
-    }
-    for y in 0..window.height {
-        for x in 0..window.width {
-            desktop.color[((y + 100) * 1280 + x + 200) as usize] =
-                window.color[(y * window.width + x) as usize];
-        }
-    }
+    let desktop = on_desktop(&window, 200, 100);
     let cases = [
         ("window.png", window, [4, 30], "the render is the 500x500 rectangle at (4, 30) of this 508x534 screenshot, inside its frame; left out: 30 pixels above, 4 pixels below, 4 pixels left of, 4 pixels right of (a window's title bar and borders)"),
         ("desktop.png", desktop, [204, 130], "the render is the 500x500 rectangle at (204, 130) of this 1280x800 screenshot, inside its frame; left out: 130 pixels above, 170 pixels below, 204 pixels left of, 576 pixels right of (the window's title bar and borders, and the desktop around it)"),

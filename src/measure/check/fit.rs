@@ -287,14 +287,10 @@ pub(super) fn best_of(
     let mut best: Option<Fitted> = None;
     for &h in hypotheses {
         let f = quick_fit(h, observed, setup, light);
-        // Edges blended or placed to a fraction of a pixel rank nothing: the
-        // interiors do, and an earlier (plainer) hypothesis keeps its place
-        // unless a later one explains them clearly better.
-        let better = |b: &Fitted| match setup.edges_exact {
-            true => f.better_than(b),
-            false => f.errors.interior_rmse < 0.8 * b.errors.interior_rmse - 0.05,
-        };
-        if best.as_ref().is_none_or(better) {
+        if best
+            .as_ref()
+            .is_none_or(|b| f.better_than(b, setup.edges_exact))
+        {
             best = Some(f);
         }
     }

@@ -76,8 +76,8 @@ pub fn locate(shot: &Frame) -> Option<Located> {
     if score < MIN_SCORE || (whole && scale == 1) {
         return None;
     }
-    let cut = crop(&image, x, y, side);
-    if scale == 1 && outside_is_black(&image, x, y, side) {
+    let cut = crop(&image, [x, y, side, side]);
+    if scale == 1 && outside_is_black(&image, [x, y, side, side]) {
         return None;
     }
     let (left, top) = (x * scale, y * scale);
@@ -260,24 +260,23 @@ fn close(a: [u8; 3], b: [u8; 3]) -> bool {
     (0..3).all(|i| a[i].abs_diff(b[i]) <= 16)
 }
 
-/// Whether everything outside the square at (x, y) is black.
-fn outside_is_black(image: &Frame, x: u32, y: u32, side: u32) -> bool {
+/// Whether everything outside the `width` x `height` rectangle at (x, y) is black.
+fn outside_is_black(image: &Frame, [x, y, width, height]: [u32; 4]) -> bool {
     (0..image.height).all(|v| {
         (0..image.width).all(|u| {
-            let inside = (x..x + side).contains(&u) && (y..y + side).contains(&v);
+            let inside = (x..x + width).contains(&u) && (y..y + height).contains(&v);
             inside || image.rgb(u, v) == [0, 0, 0]
         })
     })
 }
 
-/// The square of `side` at (x, y).
-fn crop(image: &Frame, x: u32, y: u32, side: u32) -> Frame {
-    let mut out = Frame::new(side, side);
-    for v in 0..side {
-        for u in 0..side {
-            out.color[(v * side + u) as usize] =
-                image.color[((y + v) * image.width + x + u) as usize];
-        }
+/// The `width` x `height` rectangle at (x, y).
+fn crop(image: &Frame, [x, y, width, height]: [u32; 4]) -> Frame {
+    let mut out = Frame::new(width, height);
+    for v in 0..height {
+        let from = ((y + v) * image.width + x) as usize;
+        out.color[(v * width) as usize..((v + 1) * width) as usize]
+            .copy_from_slice(&image.color[from..from + width as usize]);
     }
     out
 }
@@ -363,38 +362,33 @@ const FRAME_EDGE: f64 = 0.6;
 pub fn locate_by_frame(shot: &Frame) -> Option<Located> {
     let [bx0, by0, bx1, by1] = coloured_bounds(shot)?;
     let (w, h) = (shot.width, shot.height);
-    // From the render's pixel `inside` to the frame's `outside`.
-    let changes = |inside: [u8; 3], outside: [u8; 3]| {
-        outside != [0; 3] && (0..3).any(|k| inside[k].abs_diff(outside[k]) > 8)
-    };
-    // The share of the pixels in `along` that change from row `y - 1` to row
-    // `y`, or column `x - 1` to `x`, seen from the walls (`before`: the walls
-    // are past the line); the screenshot's edges count as lines.
-    let row_line = |y: u32, along: std::ops::Range<u32>, before: bool| -> f64 {
-        if y == 0 || y == h {
-            return 1.0;
-        }
-        let n = along.len().max(1);
-        let changed = along
-            .filter(|&x| match before {
-                true => changes(shot.rgb(x, y), shot.rgb(x, y - 1)),
-                false => changes(shot.rgb(x, y - 1), shot.rgb(x, y)),
+    // The share of `pairs` (the render's pixel, the frame's beyond it) whose
+    // colour changes to something not black.
+    let share = |pairs: &mut dyn ExactSizeIterator<Item = ([u8; 3], [u8; 3])>| {
+        let n = pairs.len().max(1);
+        let changed = pairs
+            .filter(|(inside, outside)| {
+                *outside != [0; 3] && (0..3).any(|k| inside[k].abs_diff(outside[k]) > 8)
             })
             .count();
         changed as f64 / n as f64
     };
-    let column_line = |x: u32, along: std::ops::Range<u32>, before: bool| -> f64 {
-        if x == 0 || x == w {
+    // The line between row (or column) `at - 1` and `at`, over `along`, seen
+    // from the walls (`before`: the walls are past the line); the screenshot's
+    // edges count as lines.
+    let row_line = |at: u32, along: std::ops::Range<u32>, before: bool| -> f64 {
+        if at == 0 || at == h {
             return 1.0;
         }
-        let n = along.len().max(1);
-        let changed = along
-            .filter(|&y| match before {
-                true => changes(shot.rgb(x, y), shot.rgb(x - 1, y)),
-                false => changes(shot.rgb(x - 1, y), shot.rgb(x, y)),
-            })
-            .count();
-        changed as f64 / n as f64
+        let (inside, outside) = if before { (at, at - 1) } else { (at - 1, at) };
+        share(&mut along.map(|x| (shot.rgb(x, inside), shot.rgb(x, outside))))
+    };
+    let column_line = |at: u32, along: std::ops::Range<u32>, before: bool| -> f64 {
+        if at == 0 || at == w {
+            return 1.0;
+        }
+        let (inside, outside) = if before { (at, at - 1) } else { (at - 1, at) };
+        share(&mut along.map(|y| (shot.rgb(inside, y), shot.rgb(outside, y))))
     };
     let strong = |s: f64| s >= FRAME_EDGE;
     let top = (0..=by0)
@@ -415,20 +409,11 @@ pub fn locate_by_frame(shot: &Frame) -> Option<Located> {
     if !framed || (rw, rh) == (w, h) || rw < 64 || rh < 64 {
         return None;
     }
-    let outside_black = (0..h).all(|y| {
-        (0..w).all(|x| {
-            (left..right).contains(&x) && (top..bottom).contains(&y) || shot.rgb(x, y) == [0; 3]
-        })
-    });
-    if outside_black {
+    let crop_at = [left, top, rw, rh];
+    if outside_is_black(shot, crop_at) {
         return None;
     }
-    let mut frame = Frame::new(rw, rh);
-    for y in 0..rh {
-        for x in 0..rw {
-            frame.color[(y * rw + x) as usize] = shot.color[((top + y) * w + left + x) as usize];
-        }
-    }
+    let frame = crop(shot, crop_at);
     let note = format!(
         "the render is the {rw}x{rh} rectangle at ({left}, {top}) of this {w}x{h} screenshot, inside its frame; left out: {}",
         left_out([top, h - bottom, left, w - right], 1)
@@ -436,7 +421,7 @@ pub fn locate_by_frame(shot: &Frame) -> Option<Located> {
     Some(Located {
         frame,
         note,
-        crop: [left, top, rw, rh],
+        crop: crop_at,
     })
 }
 
