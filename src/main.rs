@@ -64,8 +64,10 @@ fn check(a: &CheckArgs) -> Result<(), Failure> {
         _ => None,
     };
     let Some(image) = single else {
+        let mut progress = app::progress::Progress::on_stderr();
         let (checks, table) =
-            check::check_many(&a.images, &options, a.json, a.csv.as_deref()).map_err(failure)?;
+            check::check_many(&a.images, &options, a.json, a.csv.as_deref(), &mut progress)
+                .map_err(failure)?;
         print_out(&table)?;
         let written = a.csv.iter().chain(checks.iter().flat_map(|c| &c.written));
         written.for_each(|path| eprintln!("wrote {}", path.display()));
@@ -78,6 +80,10 @@ fn check(a: &CheckArgs) -> Result<(), Failure> {
         return Err(Failure::Usage(
             "--csv writes the table of several files or a folder; give it those".into(),
         ));
+    }
+    if options.fit_light {
+        let what = format!("{}: fitting the light, about 2 s", image.display());
+        app::progress::Progress::on_stderr().note(&what);
     }
     let (result, written) = check::check_image_file(image, &options).map_err(failure)?;
     let name = image.display().to_string();
@@ -161,14 +167,14 @@ fn run(cli: Cli) -> Result<(), Failure> {
             if let Some(power) = a.light_power {
                 view.light.power = glam::Vec3::splat(power);
             }
-            wrote(app::report(&a.out, a.quick, &scene, &view, |line| {
-                eprintln!("{line}")
-            })?);
+            let mut progress = app::progress::Progress::on_stderr();
+            wrote(app::report(&a.out, a.quick, &scene, &view, &mut progress)?);
             Ok(())
         }
         Command::Stress(a) => {
             app::stress_fits(a.quick)?;
-            let (tables, failed, total) = app::stress(a.quick, |line| eprintln!("{line}"));
+            let (tables, failed, total) =
+                app::stress(a.quick, &mut app::progress::Progress::on_stderr());
             print_out(&format!("{tables}\n"))?;
             match failed {
                 0 => Ok(()),

@@ -1,6 +1,8 @@
 //! After the first frame, drawing allocates nothing: no heap allocation per
 //! triangle, row or pixel. A counting allocator watches a second frame of every
-//! figure, with both rasterizers, on the box and on a finer mesh.
+//! figure, with both rasterizers, on the box and on a finer mesh. It counts on the
+//! drawing thread only, so the suite's other tests, running beside it, are not
+//! counted.
 
 use rasterlab::app::figure::Inputs;
 use rasterlab::app::figure::Raster;
@@ -8,18 +10,25 @@ use rasterlab::app::Settings;
 use rasterlab::scene::{cornell_box, subdivide};
 use rasterlab::{Figure, Frame};
 use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::cell::Cell;
 
 struct Counting;
 
-static COUNTING: AtomicBool = AtomicBool::new(false);
-static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+thread_local! {
+    // Const-initialised: reading them never allocates, which the allocator relies on.
+    static COUNTING: Cell<bool> = const { Cell::new(false) };
+    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
+}
+
+fn count() {
+    if COUNTING.get() {
+        ALLOCATIONS.set(ALLOCATIONS.get() + 1);
+    }
+}
 
 unsafe impl GlobalAlloc for Counting {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        if COUNTING.load(Ordering::Relaxed) {
-            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
-        }
+        count();
         // SAFETY: the caller's contract is passed on unchanged.
         unsafe { System.alloc(layout) }
     }
@@ -30,9 +39,7 @@ unsafe impl GlobalAlloc for Counting {
     }
 
     unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        if COUNTING.load(Ordering::Relaxed) {
-            ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
-        }
+        count();
         // SAFETY: as above.
         unsafe { System.realloc(ptr, layout, new_size) }
     }
@@ -52,16 +59,16 @@ fn a_frame_after_the_first_allocates_nothing() {
                 let mut pipeline = figure.pipeline_for(&mesh);
                 let mut frame = Frame::default();
                 // The first frame allocates its buffers: the counter sees them.
-                ALLOCATIONS.store(0, Ordering::Relaxed);
-                COUNTING.store(true, Ordering::Relaxed);
+                ALLOCATIONS.set(0);
+                COUNTING.set(true);
                 pipeline.render(&uniforms, &mesh, &camera, &mut frame);
-                COUNTING.store(false, Ordering::Relaxed);
-                assert!(ALLOCATIONS.load(Ordering::Relaxed) > 0);
-                ALLOCATIONS.store(0, Ordering::Relaxed);
-                COUNTING.store(true, Ordering::Relaxed);
+                COUNTING.set(false);
+                assert!(ALLOCATIONS.get() > 0);
+                ALLOCATIONS.set(0);
+                COUNTING.set(true);
                 pipeline.render(&uniforms, &mesh, &camera, &mut frame);
-                COUNTING.store(false, Ordering::Relaxed);
-                let n = ALLOCATIONS.load(Ordering::Relaxed);
+                COUNTING.set(false);
+                let n = ALLOCATIONS.get();
                 assert_eq!(n, 0, "{} on {} triangles", figure.label(), mesh.faces.len());
             }
         }

@@ -5,7 +5,7 @@
 //! programs in steps/, and `student_lab` below, a compact lab 3 written the way
 //! the handout's listings go, with a switch for each known difference.
 
-mod common;
+use crate::common;
 use common::temp_dir;
 use glam::Vec3;
 use rasterlab::measure::check::check_image;
@@ -14,24 +14,7 @@ use rasterlab::measure::check::rows::{check_rows, parse_rows, RowsVariant};
 use rasterlab::{cornell_box, Frame};
 use std::process::{Command, Output};
 
-#[allow(dead_code)]
-#[path = "../steps/5-depth.rs"]
-mod depth;
-#[allow(dead_code)]
-#[path = "../steps/4-filled.rs"]
-mod filled;
-#[allow(dead_code)]
-#[path = "../steps/7-pixel-light.rs"]
-mod pixel_light;
-#[allow(dead_code)]
-#[path = "../steps/2-points.rs"]
-mod points;
-#[allow(dead_code)]
-#[path = "../steps/6-vertex-light.rs"]
-mod vertex_light;
-#[allow(dead_code)]
-#[path = "../steps/3-wireframe.rs"]
-mod wireframe;
+use crate::plain::{depth, filled, pixel_light, points, vertex_light, wireframe};
 
 /// What a student's lab draws: the stage and every choice that differs among
 /// the implementations we have seen.
@@ -916,7 +899,7 @@ fn page_example() -> Frame {
 }
 
 /// docs/check/student.png and docs/check/student-heat.png are what the code
-/// makes now; `RASTERLAB_UPDATE_DOCS=1 cargo test --release --test check` rewrites
+/// makes now; `RASTERLAB_UPDATE_DOCS=1 cargo test --release --test suite check::` rewrites
 /// them (then paste the two reports of `rasterlab check docs/check/student.png`
 /// with and without --fit-light into docs/check.md).
 #[test]

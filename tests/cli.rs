@@ -1,7 +1,7 @@
 //! The command line: help, options, timing output, and bad input that must give a
 //! one-line error and the right exit code, never a panic or a half-written file.
 
-mod common;
+use crate::common;
 use common::temp_dir;
 use std::process::{Command, Output};
 
@@ -320,4 +320,38 @@ fn the_viewer_without_a_display_says_so() {
     assert!(err.contains("rasterlab all --out"), "{err}");
     usage_error(&["view", "teapot"], "unknown stage 'teapot'");
     usage_error(&["view", "--keys", "jump*3"], "unknown key 'jump'");
+}
+
+/// A long command tells a terminal how far along it is, on standard error, and
+/// tells a pipe nothing: there only what it produces and what it wrote.
+#[test]
+fn progress_is_shown_on_a_terminal_only() {
+    let dir = temp_dir("progress");
+    let root = env!("CARGO_MANIFEST_DIR");
+    std::fs::copy(format!("{root}/steps/fig5-depth.png"), dir.join("a.png")).unwrap();
+    std::fs::write(dir.join("b.png"), b"not an image").unwrap();
+    let folder = dir.to_str().unwrap();
+    let piped = rasterlab(&["check", folder]);
+    assert_eq!(piped.status.code(), Some(1), "{}", stderr(&piped));
+    assert_eq!(stderr(&piped), "", "nothing but the table when piped");
+    // util-linux's script(1) runs the command on a pseudo-terminal (Debian has it
+    // in every install); -e passes the exit status on.
+    let bin = env!("CARGO_BIN_EXE_rasterlab");
+    let on_terminal = Command::new("script")
+        .args([
+            "-qec",
+            &format!("{bin} check {folder} 2>&1 >/dev/null"),
+            "/dev/null",
+        ])
+        .output()
+        .expect("script(1) from util-linux");
+    let shown = String::from_utf8_lossy(&on_terminal.stdout).replace('\r', "");
+    assert_eq!(on_terminal.status.code(), Some(1), "{shown}");
+    let mut lines: Vec<&str> = shown.lines().collect();
+    lines.sort();
+    assert_eq!(lines.len(), 2, "{shown}");
+    assert!(lines[0].starts_with(&format!("[1/2] {folder}/")), "{shown}");
+    assert!(lines[1].starts_with(&format!("[2/2] {folder}/")), "{shown}");
+    assert!(shown.contains("/a.png: matches"), "{shown}");
+    assert!(shown.contains("/b.png: unreadable"), "{shown}");
 }

@@ -2,7 +2,6 @@
 //! change that alters a figure on purpose, regenerate them with
 //! `cargo run --release -- all --out steps` and commit the new PNGs.
 
-mod common;
 use rasterlab::app::image_io::read_rgb;
 use rasterlab::app::overview::figure_one;
 use rasterlab::app::{self, Settings, OVERVIEW_FILE};

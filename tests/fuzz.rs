@@ -5,7 +5,7 @@
 //! never a panic, a hang or an allocation past the bounds. (`fuzz/` holds the
 //! coverage-guided `cargo fuzz` targets of the same parsers.)
 
-mod common;
+use crate::common;
 use proptest::prelude::*;
 use rasterlab::app::parse;
 use rasterlab::measure::check::rows::parse_rows;

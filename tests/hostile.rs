@@ -3,7 +3,7 @@
 //! wrong. Each case is refused with one line, or drawn, never waited on or
 //! aborted.
 
-mod common;
+use crate::common;
 use common::temp_dir;
 use std::fs;
 use std::os::unix::fs::PermissionsExt;

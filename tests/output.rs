@@ -2,7 +2,7 @@
 //! links followed to their targets, devices and FIFOs written in place, `-` to
 //! standard output, the format from the name; the same as a normal user.
 
-mod common;
+use crate::common;
 use common::temp_dir;
 use std::fs;
 use std::io::Read;

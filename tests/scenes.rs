@@ -121,7 +121,7 @@ fn the_shipped_models_are_current() {
             let shipped = fs::read(models.join(&file)).unwrap_or_default();
             assert!(
                 shipped == fs::read(dir.0.join(&file)).unwrap(),
-                "docs/models/{file} is stale: run RASTERLAB_UPDATE_MODELS=1 cargo test --release --test scenes"
+                "docs/models/{file} is stale: run RASTERLAB_UPDATE_MODELS=1 cargo test --release --test suite scenes::"
             );
         }
     }

@@ -1,6 +1,6 @@
 //! The stress catalogue through the binary, and bad input that must be refused.
 
-mod common;
+use crate::common;
 use std::process::Command;
 
 fn rasterlab(args: &[&str]) -> std::process::Output {

@@ -1,7 +1,7 @@
 //! Pixels whose colour the handout fixes, stage by stage, with the default scene,
 //! camera (0, 0, -3.001), f = 500 and 500 x 500 pixels.
 
-mod common;
+use crate::common;
 use common::*;
 use rasterlab::pipeline::clip::ScreenVertex;
 use rasterlab::pipeline::raster::rows::to_pixel;

@@ -2,28 +2,10 @@
 //! drawing equals the core's stage, byte for byte. (Clipping and the guard band,
 //! which only the core has, never act on the default view, so nothing differs.)
 
-mod common;
 use rasterlab::app::{self, Settings};
 use rasterlab::{cornell_box, Figure, StageName};
 
-#[allow(dead_code)]
-#[path = "../steps/5-depth.rs"]
-mod depth;
-#[allow(dead_code)]
-#[path = "../steps/4-filled.rs"]
-mod filled;
-#[allow(dead_code)]
-#[path = "../steps/7-pixel-light.rs"]
-mod pixel_light;
-#[allow(dead_code)]
-#[path = "../steps/2-points.rs"]
-mod points;
-#[allow(dead_code)]
-#[path = "../steps/6-vertex-light.rs"]
-mod vertex_light;
-#[allow(dead_code)]
-#[path = "../steps/3-wireframe.rs"]
-mod wireframe;
+use crate::plain::{depth, filled, pixel_light, points, vertex_light, wireframe};
 
 fn core(figure: Figure) -> Vec<u8> {
     app::render(figure, &cornell_box(), &Settings::default(), None)
@@ -116,7 +98,7 @@ fn each_page_shows_its_sections_diff() {
         } else {
             assert!(
                 page[start..end] == block,
-                "{after}.md's diff is stale: run RASTERLAB_UPDATE_STEPS=1 cargo test --release --test steps"
+                "{after}.md's diff is stale: run RASTERLAB_UPDATE_STEPS=1 cargo test --release --test suite steps::"
             );
         }
     }

@@ -2,6 +2,7 @@
 //! checker of [`crate::measure::check`], and writing its report and heat map.
 
 use crate::app::image_io::{write_image, WriteError};
+use crate::app::progress::Progress;
 use crate::measure::check::check_image;
 use crate::measure::check::image::{ImageCheck, Setup};
 use crate::measure::check::locate::{doubled, locate, locate_by_frame, shrunk};
@@ -552,34 +553,24 @@ pub fn submission_files(inputs: &[PathBuf]) -> Result<Vec<PathBuf>, CheckError> 
 /// Checks every file, on `threads` threads, in order: one [`FileCheck`] each,
 /// whatever happens to the others. With `options.out`, each image's heat map is
 /// named after its path (`a/shot.png` gives `a_shot-heat.png`), so two
-/// students' `shot.png` do not overwrite each other.
-pub fn check_files(files: &[PathBuf], options: &CheckOptions, threads: usize) -> Vec<FileCheck> {
+/// students' `shot.png` do not overwrite each other. `progress` is told of each
+/// file as it is done.
+pub fn check_files(
+    files: &[PathBuf],
+    options: &CheckOptions,
+    threads: usize,
+    progress: &mut Progress,
+) -> Vec<FileCheck> {
     use rayon::prelude::*;
     let common = common_folder(files);
+    progress.begin(files.len());
+    let progress = std::sync::Mutex::new(progress);
     let one = |file: &PathBuf| {
-        let name = heat_name(file, &common);
-        match check_image_named(file, &name, options) {
-            Ok((check, written)) => FileCheck {
-                status: if check.is_handouts_figure(options.stage) {
-                    Status::Matches
-                } else if check.fitted.is_some() {
-                    Status::Differs
-                } else {
-                    Status::NotLab3
-                },
-                summary: first_sentence(&check, file),
-                file: file.clone(),
-                check: Some(check),
-                written,
-            },
-            Err(CheckError::Usage(e) | CheckError::Run(e)) => FileCheck {
-                file: file.clone(),
-                status: Status::Unreadable,
-                summary: e,
-                check: None,
-                written: Vec::new(),
-            },
+        let checked = check_one(file, &heat_name(file, &common), options);
+        if let Ok(mut p) = progress.lock() {
+            p.step(&format!("{}: {}", file.display(), checked.status.name()));
         }
+        checked
     };
     match rayon::ThreadPoolBuilder::new()
         .num_threads(threads.max(1))
@@ -587,6 +578,32 @@ pub fn check_files(files: &[PathBuf], options: &CheckOptions, threads: usize) ->
     {
         Ok(pool) => pool.install(|| files.par_iter().map(one).collect()),
         Err(_) => files.iter().map(one).collect(),
+    }
+}
+
+/// One file of [`check_files`], whatever happens to it.
+fn check_one(file: &Path, name: &str, options: &CheckOptions) -> FileCheck {
+    match check_image_named(file, name, options) {
+        Ok((check, written)) => FileCheck {
+            status: if check.is_handouts_figure(options.stage) {
+                Status::Matches
+            } else if check.fitted.is_some() {
+                Status::Differs
+            } else {
+                Status::NotLab3
+            },
+            summary: first_sentence(&check, file),
+            file: file.to_path_buf(),
+            check: Some(check),
+            written,
+        },
+        Err(CheckError::Usage(e) | CheckError::Run(e)) => FileCheck {
+            file: file.to_path_buf(),
+            status: Status::Unreadable,
+            summary: e,
+            check: None,
+            written: Vec::new(),
+        },
     }
 }
 
@@ -598,6 +615,7 @@ pub fn check_many(
     options: &CheckOptions,
     json: bool,
     csv: Option<&Path>,
+    progress: &mut Progress,
 ) -> Result<(Vec<FileCheck>, String), CheckError> {
     if let Some(csv) = csv.filter(|c| c.is_dir()) {
         return Err(CheckError::Run(format!(
@@ -613,7 +631,7 @@ pub fn check_many(
             names.join(", ")
         )));
     }
-    let checks = check_files(&files, options, crate::app::parallel::cores());
+    let checks = check_files(&files, options, crate::app::parallel::cores(), progress);
     let table = match json {
         true => files_json(&checks),
         false => files_text(&checks),

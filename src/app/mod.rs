@@ -11,6 +11,7 @@ pub mod image_io;
 pub mod overview;
 pub mod parallel;
 pub mod parse;
+pub mod progress;
 pub mod report;
 pub mod stress;
 pub mod viewer;
@@ -30,6 +31,7 @@ use crate::pipeline::{Camera, Frame, Light, Mesh};
 use crate::scene::Scene;
 use image_io::{write_image, write_text, WriteError};
 use overview::figure_one;
+use progress::Progress;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -464,13 +466,13 @@ pub fn machine() -> String {
 }
 
 /// `rasterlab report`: measures, then writes report.md, report.csv and
-/// error-vs-time.png into `dir`. Progress lines go to `progress`.
+/// error-vs-time.png into `dir`, telling `progress` as each row is measured.
 pub fn report(
     dir: &Path,
     quick: bool,
     scene: &Scene,
     view: &Settings,
-    mut progress: impl FnMut(&str),
+    progress: &mut Progress,
 ) -> Result<Vec<PathBuf>, WriteError> {
     let plan = if quick {
         report::Plan::quick()
@@ -484,9 +486,9 @@ pub fn report(
         .prefix(".rasterlab-")
         .tempfile_in(dir)
         .map_err(|e| WriteError::new(dir, e.to_string()))?;
-    let rows = report::measure_all(&plan, scene, view, &mut progress);
+    let rows = report::measure_all(&plan, scene, view, progress);
     let size = report::conclusion_size(&plan);
-    let options = report::measure_options(scene, view, size, plan.runs, &mut progress);
+    let options = report::measure_options(scene, view, size, plan.runs, progress);
     let md = dir.join("report.md");
     let csv = dir.join("report.csv");
     let png = dir.join("error-vs-time.png");
@@ -525,7 +527,7 @@ pub fn stress_fits(quick: bool) -> Result<(), String> {
     }
 }
 
-pub fn stress(quick: bool, progress: impl FnMut(&str)) -> (String, usize, usize) {
+pub fn stress(quick: bool, progress: &mut Progress) -> (String, usize, usize) {
     let outcomes = stress::run_all(quick, progress);
     let text = format!(
         "{}\nLong spans, largest distance from the exact position:\n\n{}",

@@ -4,6 +4,7 @@
 
 use crate::app::figure::Figure;
 use crate::app::figure::Inputs;
+use crate::app::progress::Progress;
 use crate::app::Settings;
 use crate::extensions::depth_of_field::DepthOfField;
 use crate::extensions::shadow::Shadows;
@@ -226,14 +227,14 @@ fn measure(
     }
 }
 
-/// Measures everything in `plan`, printing progress to `progress`.
+/// Measures everything in `plan`, one step of `progress` per row.
 /// A scene other than the box is measured at k = 1 only: subdividing is the box's
 /// way of trading triangles for accuracy.
 pub fn measure_all(
     plan: &Plan,
     scene: &Scene,
     view: &Settings,
-    mut progress: impl FnMut(&str),
+    progress: &mut Progress,
 ) -> Vec<Row> {
     let base = &scene.mesh;
     let inputs = Inputs::lit(view.light);
@@ -245,10 +246,9 @@ pub fn measure_all(
     }
     let figures = measured_figures();
     let total = sizes.len() * (2 + figures.len()) + (plan_ks.len() - 1) * figures.len();
-    let mut done = 0;
-    let mut step = |what: &str, ms: f64, progress: &mut dyn FnMut(&str)| {
-        done += 1;
-        progress(&format!("[{done:>3}/{total}] {what}: median {ms:.2} ms"));
+    progress.begin(total);
+    let step = |what: &str, ms: f64, progress: &mut Progress| {
+        progress.step(&format!("{what}: median {ms:.2} ms"));
     };
     for &size in &sizes {
         let r = reference(base, size, plan.runs, view);
@@ -266,7 +266,7 @@ pub fn measure_all(
                 interior: image_error(&r.lit.frame, &r.lit.frame, Some(&r.mask)),
             },
         });
-        step(&format!("raytrace {size}x{size}"), rt_ms, &mut progress);
+        step(&format!("raytrace {size}x{size}"), rt_ms, progress);
         // The final ray tracer of lab 2: what shadows add, which no stage draws.
         let row = Row {
             stage: RAYTRACE_SHADOWS.into(),
@@ -283,7 +283,7 @@ pub fn measure_all(
         step(
             &format!("raytrace --shadows {size}x{size}"),
             row.ms(),
-            &mut progress,
+            progress,
         );
         rows.push(row);
         let ks: &[u32] = if size == plan.k_size { plan_ks } else { &[1] };
@@ -317,7 +317,7 @@ pub fn measure_all(
                 step(
                     &format!("{} {size}x{size} k={k}", row.stage),
                     row.ms(),
-                    &mut progress,
+                    progress,
                 );
                 rows.push(row);
             }
@@ -871,7 +871,7 @@ pub fn measure_options(
     view: &Settings,
     size: u32,
     runs: usize,
-    mut progress: impl FnMut(&str),
+    progress: &mut Progress,
 ) -> Vec<Row> {
     use crate::scene::texture::{apply_normal_map, apply_parallax, apply_texture, bumps};
     let (camera, light) = (camera_for(size, view), view.light);
@@ -948,6 +948,7 @@ pub fn measure_options(
     let rt_ms = rt_timing.median.as_secs_f64() * 1e3;
     let near = camera.near.unwrap_or(crate::pipeline::camera::DEFAULT_NEAR);
     let mut rows = Vec::new();
+    progress.begin(cases.len());
     for case in cases {
         let mesh = &case.scene.mesh;
         let mut pipeline = case.figure.pipeline_for(&case.scene);
@@ -992,7 +993,7 @@ pub fn measure_options(
             speedup: rt_ms / (timing.median.as_secs_f64() * 1e3),
             metric,
         };
-        progress(&format!(
+        progress.step(&format!(
             "{} {size}x{size}: median {:.2} ms",
             row.stage,
             row.ms()

@@ -5,6 +5,7 @@
 //! with the ray tracer where that means something, and timed.
 
 use crate::app::figure::{Attributes, Figure, Inputs, MakeStage, WithStage};
+use crate::app::progress::Progress;
 use crate::app::report::INTERIOR_MARGIN;
 use crate::measure::metrics::{differing_fraction, image_error, interior_mask};
 use crate::measure::raytrace::{self, raytrace, Shading};
@@ -458,16 +459,15 @@ pub fn catalogue(quick: bool) -> Vec<Case> {
 
 /// Runs every case of the catalogue, `runs` timed draws each, telling `progress`
 /// about each as it finishes.
-pub fn run_all(quick: bool, mut progress: impl FnMut(&str)) -> Vec<Outcome> {
+pub fn run_all(quick: bool, progress: &mut Progress) -> Vec<Outcome> {
     let cases = catalogue(quick);
     let runs = if quick { 1 } else { 3 };
     let mut outcomes = Vec::new();
-    for (i, case) in cases.iter().enumerate() {
+    progress.begin(cases.len());
+    for case in &cases {
         let o = run(case, runs);
-        progress(&format!(
-            "[{:>2}/{}] {} ({}): {}",
-            i + 1,
-            cases.len(),
+        progress.step(&format!(
+            "{} ({}): {}",
             o.name,
             o.stage,
             if o.pass { "ok" } else { "FAIL" }
