@@ -462,7 +462,10 @@ pub fn machine() -> String {
         })
         .unwrap_or_else(|| "an unknown processor".into());
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    format!("{cpu}, {cores} cores (one used)")
+    match cores {
+        1 => format!("{cpu}, 1 core"),
+        n => format!("{cpu}, {n} cores (one used)"),
+    }
 }
 
 /// `rasterlab report`: measures, then writes report.md, report.csv and
