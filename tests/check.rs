@@ -1784,3 +1784,55 @@ fn known_slips_are_named() {
         assert!(!check.is_handouts_figure(None), "{name}");
     }
 }
+
+/// A render resized by an image viewer to a size other than half (bilinear, as
+/// `image` and most viewers resize) is still the figure it was, with the
+/// handout's light, and names no variant: its blended edges say nothing about a
+/// rasterizer's rounding, and the resampling nothing about pi.
+#[test]
+fn a_render_resized_to_another_size_names_no_variant() {
+    use image::imageops::{resize, FilterType};
+    use rasterlab::app::check::{check_image_file, CheckOptions};
+    use rasterlab::app::{self as app, Settings};
+    use rasterlab::{Figure, StageName};
+    let dir = temp_dir("check-resized");
+    for (stage, figure) in [
+        (StageName::Depth, 5),
+        (StageName::VertexLight, 6),
+        (StageName::PixelLight, 7),
+    ] {
+        let (frame, _) = app::render(
+            Figure::of(stage),
+            &cornell_box(),
+            &Settings::default(),
+            None,
+        );
+        let rgb = image::RgbImage::from_raw(500, 500, frame.to_rgb8()).unwrap();
+        for side in [375, 400] {
+            let shot = dir.join(format!("resized-{side}.png"));
+            resize(&rgb, side, side, FilterType::Triangle)
+                .save(&shot)
+                .unwrap();
+            let (check, _) = check_image_file(&shot, &CheckOptions::default()).unwrap();
+            let f = check.fitted.as_ref().expect("a lab 3 image");
+            assert_eq!(
+                (f.hypothesis.figure(), f.variants()),
+                (figure, vec![]),
+                "{stage:?} at {side}: {}",
+                check.text("shot")
+            );
+            assert!(
+                check.notes.iter().any(|n| n.contains("resized")),
+                "{:?}",
+                check.notes
+            );
+            if figure > 5 {
+                assert!(
+                    (f.shading.power - 1.1).abs() < 0.03,
+                    "{stage:?} at {side}: {:?}",
+                    f.shading
+                );
+            }
+        }
+    }
+}

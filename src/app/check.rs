@@ -5,7 +5,7 @@ use crate::app::image_io::{write_image, WriteError};
 use crate::app::progress::Progress;
 use crate::measure::check::check_image;
 use crate::measure::check::image::{ImageCheck, Setup};
-use crate::measure::check::locate::{doubled, locate, locate_by_frame, shrunk};
+use crate::measure::check::locate::{blended_edges, doubled, locate, locate_by_frame, shrunk};
 use crate::measure::check::pose::{fit_pose, walls_in_place};
 use crate::measure::check::rows::{check_rows, parse_rows_skipping, RowsCheck};
 use crate::measure::heat::heat_map_picture;
@@ -218,6 +218,9 @@ fn check_image_named(
     if blended {
         observed = doubled(&observed);
     }
+    // Resized to another size, or anti-aliased: checked as it is, its edges
+    // taken for no rasterizer's.
+    let resized = !blended && blended_edges(&observed);
     let (w, h) = (observed.width, observed.height);
     if let Some((sw, sh)) = options.size {
         if (sw, sh) != (w, h) {
@@ -243,8 +246,8 @@ fn check_image_named(
     setup.power = options.light_power;
     setup.indirect = options.indirect;
     setup.fit_light = options.fit_light;
-    setup.edges_exact = !blended;
-    setup.resampled = blended;
+    setup.edges_exact = !(blended || resized);
+    setup.resampled = blended || resized;
     // Mostly black: points, lines, or nothing; there are no walls to place.
     let lit = observed
         .color
@@ -399,6 +402,9 @@ fn check_image_named(
         check.notes.insert(0, format!(
             "the image was shrunk to half its size (the colours either side of each edge are blended, as a 2 x 2 mean makes them); it was checked doubled, at {w}x{h}, and no variant was looked for on its edges"
         ));
+    }
+    if resized {
+        check.notes.insert(0, "the colours either side of the image's edges are blended, which no rasterizer without anti-aliasing draws: it was resized (to a size other than half) or drawn anti-aliased; it was checked as it is, and no variant was looked for on its edges".to_string());
     }
     if let Some(l) = located {
         check.notes.insert(0, l.note);

@@ -334,6 +334,52 @@ pub fn shrunk(image: &Frame) -> bool {
     halved * 2 >= n && halved > direct + n / 200
 }
 
+/// The share of an image's sharp edges whose middle pixel lies between its two
+/// neighbours above which `blended_edges` takes it for resampled. A rasterizer
+/// without anti-aliasing gives each pixel one surface's colour, so across an edge
+/// the middle pixel is one side or the other (measured on the handout's seven
+/// figures: at most 2 % between); resizing mixes them (a 3/4 resize of Figure 5
+/// or 6: over 40 %).
+const BLENDED_SHARE: f64 = 0.15;
+
+/// Whether `image`'s edges are blended: resized to a size other than half (see
+/// [`shrunk`]), or drawn anti-aliased. Such an image cannot show the variants
+/// that move edges by a pixel, and its colours near edges are no rasterizer's.
+/// Looked at along rows and columns: three pixels in a line whose ends differ by
+/// at least 48/255 in some channel are a sharp edge, and the middle one is
+/// between when, in that channel, it is at least a quarter of the step from
+/// either end.
+pub fn blended_edges(image: &Frame) -> bool {
+    let (w, h) = (image.width as usize, image.height as usize);
+    if w < 16 || h < 16 {
+        return false;
+    }
+    let at = |x: usize, y: usize| crate::pipeline::target::unpack(image.color[y * w + x]);
+    let (mut edges, mut between) = (0u64, 0u64);
+    let mut look = |a: [u8; 3], m: [u8; 3], b: [u8; 3]| {
+        let Some(k) = (0..3).max_by_key(|&k| a[k].abs_diff(b[k])) else {
+            return;
+        };
+        let step = a[k].abs_diff(b[k]);
+        if step < 48 {
+            return;
+        }
+        edges += 1;
+        let margin = step / 4;
+        let (lo, hi) = (a[k].min(b[k]), a[k].max(b[k]));
+        if m[k] >= lo.saturating_add(margin) && m[k] <= hi.saturating_sub(margin) {
+            between += 1;
+        }
+    };
+    for y in 1..h - 1 {
+        for x in 1..w - 1 {
+            look(at(x - 1, y), at(x, y), at(x + 1, y));
+            look(at(x, y - 1), at(x, y), at(x, y + 1));
+        }
+    }
+    edges >= 64 && between as f64 > BLENDED_SHARE * edges as f64
+}
+
 /// `image` at twice its size, each pixel a 2 x 2 block.
 pub fn doubled(image: &Frame) -> Frame {
     let (w, h) = (image.width * 2, image.height * 2);
