@@ -1,6 +1,6 @@
-//! `cargo bench --bench check`: the time `rasterlab check` takes per 500 x 500
+//! `cargo bench --features bench --bench check`: the time `rasterlab check` takes per 500 x 500
 //! screenshot (issue #22 asks for a full fit, light and pose, in at most 2 s on
-//! one core; run it pinned: `taskset -c 0 cargo bench --bench check`). Each case
+//! one core; run it pinned: `taskset -c 0 cargo bench --features bench --bench check`). Each case
 //! is a render of our own written as PNG and checked as a file, as a student's
 //! would be: the handout's Figure 7; Figure 7 with --fit-light; a walked-around
 //! camera (the pose fitted); a public solution's moved light with --fit-light;

@@ -1,4 +1,4 @@
-//! `cargo bench`: median frame times of every stage, on one thread, as #13 asks to
+//! `cargo bench --features bench`: median frame times of every stage, on one thread, as #13 asks to
 //! measure before optimising: the box at 500x500 and 2000x2000, and the box split
 //! 16 x 16 and 183 x 183 (a million triangles) at 1920x1080, depth-only and lit,
 //! with each rasterizer. Criterion reports medians; Mpixel/s and Mtriangles/s

@@ -1,4 +1,4 @@
-//! `cargo bench --bench versus_euc`: rasterlab against euc 0.5.3 in one process,
+//! `cargo bench --features bench --bench versus_euc`: rasterlab against euc 0.5.3 in one process,
 //! on the same mesh, camera, 1/z depth buffer and light code, frames interleaved
 //! (rows, edge, euc, in turn) so that the shared machine's noise falls on all
 //! three alike. Prints a markdown table of median frame times, Mtriangles/s and
@@ -6,7 +6,7 @@
 //! the two images differ in, which shows the comparison draws the same picture.
 //!
 //! Run it in both builds: the default one, and
-//! `RUSTFLAGS="-C target-cpu=native" cargo bench --bench versus_euc` (euc's
+//! `RUSTFLAGS="-C target-cpu=native" cargo bench --features bench --bench versus_euc` (euc's
 //! `mul_add` becomes one FMA instruction there). The table's title says which.
 //! `cargo test` runs only the smallest case, once, as a smoke test.
 
