@@ -1849,3 +1849,47 @@ fn a_render_resized_to_another_size_names_no_variant() {
         }
     }
 }
+
+/// A moved camera in a HiDPI screenshot (the window shown at twice its size,
+/// each pixel a 2 x 2 block): the render is found by its frame, halved, and its
+/// pose fitted as at its own size.
+#[test]
+fn a_moved_camera_in_a_hidpi_screenshot_is_found_and_halved() {
+    use rasterlab::app::check::{check_image_file, CheckOptions};
+    use rasterlab::app::{self as app, image_io::write_image, Settings};
+    use rasterlab::measure::check::locate::doubled;
+    use rasterlab::{Figure, StageName};
+    let dir = temp_dir("check-moved-hidpi");
+    let walked = Settings {
+        camera: rasterlab::Camera {
+            position: Vec3::new(-0.2, 0.1, -3.3),
+            yaw: (-8f32).to_radians(),
+            pitch: (-4f32).to_radians(),
+            ..rasterlab::Camera::handout(500, 500)
+        },
+        ..Settings::default()
+    };
+    let (depth, _) = app::render(Figure::of(StageName::Depth), &cornell_box(), &walked, None);
+    let shot = dir.join("hidpi.png");
+    write_image(&doubled(&in_window(&depth, 30, 4, 1)), &shot).unwrap();
+    let (check, _) = check_image_file(&shot, &CheckOptions::default()).unwrap();
+    assert_eq!(check.crop, Some([8, 60, 1000, 1000]), "{:?}", check.notes);
+    assert_eq!(
+        check.notes[0],
+        "the render is the 1000x1000 rectangle at (8, 60) of this 1016x1068 screenshot, inside its frame; left out: 60 pixels above, 8 pixels below, 8 pixels left of, 8 pixels right of (a window's title bar and borders)"
+    );
+    assert_eq!(
+        check.notes[1],
+        "the image is its render at twice the size, each pixel a 2 x 2 block (as a HiDPI screen shows a window); it was checked halved, at 500x500"
+    );
+    let f = check.fitted.as_ref().expect("a lab 3 image");
+    assert_eq!((f.hypothesis.figure(), f.variants()), (5, vec![]));
+    let c = check.camera.expect("a fitted camera");
+    assert!(
+        (c.position - walked.camera.position).abs().max_element() < 0.02,
+        "{c:?}"
+    );
+    assert!((c.yaw.to_degrees() + 8.0).abs() < 0.5, "{c:?}");
+    assert!((c.pitch.to_degrees() + 4.0).abs() < 0.5, "{c:?}");
+    assert_eq!(c.focal, 500.0);
+}

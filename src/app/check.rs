@@ -5,7 +5,9 @@ use crate::app::image_io::{write_image, WriteError};
 use crate::app::progress::Progress;
 use crate::measure::check::check_image;
 use crate::measure::check::image::{ImageCheck, Setup};
-use crate::measure::check::locate::{blended_edges, doubled, locate, locate_by_frame, shrunk};
+use crate::measure::check::locate::{
+    blended_edges, doubled, locate, locate_by_frame, pixel_doubled, shrunk,
+};
 use crate::measure::check::pose::{fit_pose, walls_in_place};
 use crate::measure::check::rows::{check_rows, parse_rows_skipping, RowsCheck};
 use crate::measure::heat::heat_map_picture;
@@ -213,6 +215,16 @@ fn check_image_named(
     if let Some(l) = &located {
         observed = l.frame.clone();
     }
+    // Shown at twice its size pixel for pixel (a HiDPI screen): checked at the
+    // size it was drawn.
+    let halved = match fixed {
+        true => None,
+        false => pixel_doubled(&observed),
+    };
+    let shown_doubled = halved.is_some();
+    if let Some(h) = halved {
+        observed = h;
+    }
     // A screenshot shrunk to half: checked at the size it was drawn.
     let blended = !fixed && shrunk(&observed);
     if blended {
@@ -402,6 +414,9 @@ fn check_image_named(
         check.notes.insert(0, format!(
             "the image was shrunk to half its size (the colours either side of each edge are blended, as a 2 x 2 mean makes them); it was checked doubled, at {w}x{h}, and no variant was looked for on its edges"
         ));
+    }
+    if shown_doubled {
+        check.notes.insert(0, format!("the image is its render at twice the size, each pixel a 2 x 2 block (as a HiDPI screen shows a window); it was checked halved, at {w}x{h}"));
     }
     if resized {
         check.notes.insert(0, "the colours either side of the image's edges are blended, which no rasterizer without anti-aliasing draws: it was resized (to a size other than half) or drawn anti-aliased; it was checked as it is, and no variant was looked for on its edges".to_string());
