@@ -1893,3 +1893,44 @@ fn a_moved_camera_in_a_hidpi_screenshot_is_found_and_halved() {
     assert!((c.pitch.to_degrees() + 4.0).abs() < 0.5, "{c:?}");
     assert_eq!(c.focal, 500.0);
 }
+
+/// A window screenshot resized as a whole (pasted into a report and scaled, or a
+/// screen at 150 %): the render is found inside it at its new size and checked
+/// as resized, with its figure and no variant.
+#[test]
+fn a_resized_window_screenshot_is_found_and_checked_as_resized() {
+    use image::imageops::{resize, FilterType};
+    use rasterlab::app::check::{check_image_file, CheckOptions};
+    use rasterlab::app::{self as app, Settings};
+    use rasterlab::{Figure, StageName};
+    let dir = temp_dir("check-resized-window");
+    for (stage, figure) in [(StageName::Depth, 5), (StageName::PixelLight, 7)] {
+        let (frame, _) = app::render(
+            Figure::of(stage),
+            &cornell_box(),
+            &Settings::default(),
+            None,
+        );
+        let window = in_window(&frame, 30, 4, 1);
+        let rgb = image::RgbImage::from_raw(window.width, window.height, window.to_rgb8()).unwrap();
+        for (scale, side) in [(0.8f32, 399..=401), (1.5, 748..=751)] {
+            let (w, h) = (window.width as f32 * scale, window.height as f32 * scale);
+            let shot = dir.join("shot.png");
+            resize(&rgb, w as u32, h as u32, FilterType::Triangle)
+                .save(&shot)
+                .unwrap();
+            let (check, _) = check_image_file(&shot, &CheckOptions::default()).unwrap();
+            let case = format!("{stage:?} at {scale}: {}", check.text("shot"));
+            let crop = check.crop.expect(&case);
+            assert!(side.contains(&crop[2]), "{case}");
+            assert!(check.notes[0].contains("title bar"), "{case}");
+            assert!(check.notes[1].contains("resized"), "{case}");
+            let f = check.fitted.as_ref().expect(&case);
+            assert_eq!(
+                (f.hypothesis.figure(), f.variants()),
+                (figure, vec![]),
+                "{case}"
+            );
+        }
+    }
+}
