@@ -1201,6 +1201,13 @@ fn halved(frame: &Frame) -> Frame {
     out
 }
 
+/// The handout's figure of `stage`, drawn as `rasterlab STAGE` draws it.
+fn handout_render(stage: rasterlab::StageName) -> Frame {
+    let settings = rasterlab::app::Settings::default();
+    let figure = rasterlab::Figure::of(stage);
+    rasterlab::app::render(figure, &cornell_box(), &settings, None).0
+}
+
 /// A window screenshot is cut to the render it holds, and the report says what
 /// was left out; a render of another shape goes through as it is.
 #[test]
@@ -1498,16 +1505,11 @@ fn a_moved_camera_is_found_inside_a_window() {
 #[test]
 fn a_shrunk_render_names_no_shading_variant() {
     use rasterlab::app::check::{check_image_file, CheckOptions};
-    use rasterlab::app::{self as app, image_io::write_image, Settings};
-    use rasterlab::{Figure, StageName};
+    use rasterlab::app::image_io::write_image;
+    use rasterlab::StageName;
     let dir = temp_dir("check-shrunk-light");
     for (stage, figure) in [(StageName::VertexLight, 6), (StageName::PixelLight, 7)] {
-        let (frame, _) = app::render(
-            Figure::of(stage),
-            &cornell_box(),
-            &Settings::default(),
-            None,
-        );
+        let frame = handout_render(stage);
         let shot = dir.join("shrunk.png");
         write_image(&halved(&frame), &shot).unwrap();
         let (check, _) = check_image_file(&shot, &CheckOptions::default()).unwrap();
@@ -1809,12 +1811,7 @@ fn a_render_resized_to_another_size_names_no_variant() {
         (StageName::VertexLight, 6),
         (StageName::PixelLight, 7),
     ] {
-        let (frame, _) = app::render(
-            Figure::of(stage),
-            &cornell_box(),
-            &Settings::default(),
-            None,
-        );
+        let frame = handout_render(stage);
         let rgb = image::RgbImage::from_raw(500, 500, frame.to_rgb8()).unwrap();
         for side in [375, 400, 450] {
             let shot = dir.join(format!("resized-{side}.png"));
@@ -1901,16 +1898,10 @@ fn a_moved_camera_in_a_hidpi_screenshot_is_found_and_halved() {
 fn a_resized_window_screenshot_is_found_and_checked_as_resized() {
     use image::imageops::{resize, FilterType};
     use rasterlab::app::check::{check_image_file, CheckOptions};
-    use rasterlab::app::{self as app, Settings};
-    use rasterlab::{Figure, StageName};
+    use rasterlab::StageName;
     let dir = temp_dir("check-resized-window");
     for (stage, figure) in [(StageName::Depth, 5), (StageName::PixelLight, 7)] {
-        let (frame, _) = app::render(
-            Figure::of(stage),
-            &cornell_box(),
-            &Settings::default(),
-            None,
-        );
+        let frame = handout_render(stage);
         let window = in_window(&frame, 30, 4, 1);
         let rgb = image::RgbImage::from_raw(window.width, window.height, window.to_rgb8()).unwrap();
         for (scale, side) in [(0.8f32, 399..=401), (1.5, 748..=751)] {
