@@ -1377,25 +1377,91 @@ fn a_moved_camera_is_found() {
     use rasterlab::app::{self as app, image_io::write_image, Settings};
     use rasterlab::{Figure, StageName};
     let dir = temp_dir("check-moved-camera");
+    // (width, height, focal, stage, position, yaw, pitch, figure)
     let poses = [
-        (500, StageName::Depth, [0.3, -0.2, -4.5], 8.0, -5.0, 5),
-        (500, StageName::VertexLight, [0.0, 0.3, -3.6], 0.0, 10.0, 6),
-        (500, StageName::PixelLight, [-0.6, 0.1, -2.5], -12.0, 3.0, 7),
-        (500, StageName::Depth, [0.0, 0.0, -3.001], 15.0, 0.0, 5),
-        (1000, StageName::Depth, [-0.5, 0.2, -7.0], -5.0, 4.0, 5),
+        (
+            500,
+            500,
+            500,
+            StageName::Depth,
+            [0.3, -0.2, -4.5],
+            8.0,
+            -5.0,
+            5,
+        ),
+        (
+            500,
+            500,
+            500,
+            StageName::VertexLight,
+            [0.0, 0.3, -3.6],
+            0.0,
+            10.0,
+            6,
+        ),
+        (
+            500,
+            500,
+            500,
+            StageName::PixelLight,
+            [-0.6, 0.1, -2.5],
+            -12.0,
+            3.0,
+            7,
+        ),
+        (
+            500,
+            500,
+            500,
+            StageName::Depth,
+            [0.0, 0.0, -3.001],
+            15.0,
+            0.0,
+            5,
+        ),
+        (
+            1000,
+            1000,
+            1000,
+            StageName::Depth,
+            [-0.5, 0.2, -7.0],
+            -5.0,
+            4.0,
+            5,
+        ),
+        // A 640 x 480 window with f = 640 (the width, not the handout's
+        // height): the focal length is found too.
+        (
+            640,
+            480,
+            640,
+            StageName::PixelLight,
+            [0.2, -0.1, -4.0],
+            -6.0,
+            3.0,
+            7,
+        ),
+        // And with f = 480, where the search over all focal lengths at once
+        // settles on a wrong one and each is searched alone.
+        (
+            640,
+            480,
+            480,
+            StageName::Depth,
+            [0.2, -0.1, -3.4],
+            6.0,
+            0.0,
+            5,
+        ),
     ];
-    // A 640 x 480 window with f = 640 (the width, not the handout's height):
-    // the focal length is found too.
-    let wide = (640, StageName::PixelLight, [0.2, -0.1, -4.0], -6.0, 3.0, 7);
-    for (side, stage, at, yaw, pitch, figure) in poses.into_iter().chain([wide]) {
-        let height = if side == 640 { 480 } else { side };
+    for (width, height, focal, stage, at, yaw, pitch, figure) in poses {
         let walked = Settings {
             camera: rasterlab::Camera {
                 position: Vec3::from(at),
                 yaw: f32::to_radians(yaw),
                 pitch: f32::to_radians(pitch),
-                focal: side as f32,
-                ..rasterlab::Camera::handout(side, height)
+                focal: focal as f32,
+                ..rasterlab::Camera::handout(width, height)
             },
             ..Settings::default()
         };
@@ -1407,7 +1473,7 @@ fn a_moved_camera_is_found() {
         assert_eq!(f.hypothesis.figure(), figure, "{at:?}");
         assert_eq!(f.variants(), Vec::<&str>::new(), "{at:?}");
         let c = check.camera.expect("a fitted camera");
-        assert_eq!(c.focal, side as f32);
+        assert_eq!(c.focal, focal as f32, "{at:?}");
         let off = (c.position - walked.camera.position).abs();
         assert!(off.max_element() < 0.02, "{at:?}: {c:?}");
         assert!((c.yaw.to_degrees() - yaw).abs() < 0.5, "{at:?}: {c:?}");
@@ -1422,7 +1488,7 @@ fn a_moved_camera_is_found() {
         assert!(
             json.contains("\"camera\":[")
                 && json.contains("\"yaw\":")
-                && json.contains(&format!("\"focal\":{side}")),
+                && json.contains(&format!("\"focal\":{focal}")),
             "{json}"
         );
     }

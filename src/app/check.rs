@@ -94,7 +94,19 @@ fn fit_camera(observed: &Frame, setup: &Setup, options: &CheckOptions) -> Option
             }
         }
     }
-    let pose = fit_pose(observed, setup.camera, &focals);
+    let mut pose = fit_pose(observed, setup.camera, &focals);
+    // The coarse search can settle on a focal length whose poses only look
+    // right at low resolution (a 640x480 window at f = 640 instead of 480): then
+    // each focal length is searched on its own and the best full-size score kept.
+    if pose.score < MIN_POSE_SCORE && focals.len() > 1 {
+        let tried = pose.camera.focal;
+        for f in focals.iter().filter(|&&f| f != tried) {
+            let alone = fit_pose(observed, setup.camera, std::slice::from_ref(f));
+            if alone.score > pose.score {
+                pose = alone;
+            }
+        }
+    }
     // A pose that puts fewer walls in place is a search that found nothing.
     if pose.score < MIN_POSE_SCORE {
         return None;
