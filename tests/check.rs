@@ -1208,6 +1208,37 @@ fn handout_render(stage: rasterlab::StageName) -> Frame {
     rasterlab::app::render(figure, &cornell_box(), &settings, None).0
 }
 
+/// `frame` resized to `width` x `height` as image viewers do (bilinear).
+fn resized(frame: &Frame, width: u32, height: u32) -> image::RgbImage {
+    use image::imageops::{resize, FilterType};
+    let rgb = image::RgbImage::from_raw(frame.width, frame.height, frame.to_rgb8()).unwrap();
+    resize(&rgb, width, height, FilterType::Triangle)
+}
+
+/// Asserts `check` found the handout's `figure` with no variant and, given a
+/// tolerance, the handout's light power 1.1 within it.
+fn assert_plain_figure(
+    check: &rasterlab::measure::check::image::ImageCheck,
+    figure: u8,
+    power_within: Option<f32>,
+    case: &str,
+) {
+    let f = check.fitted.as_ref().expect(case);
+    assert_eq!(
+        (f.hypothesis.figure(), f.variants()),
+        (figure, vec![]),
+        "{case}: {}",
+        check.text("shot")
+    );
+    if let Some(within) = power_within {
+        assert!(
+            (f.shading.power - 1.1).abs() < within,
+            "{case}: {:?}",
+            f.shading
+        );
+    }
+}
+
 /// A window screenshot is cut to the render it holds, and the report says what
 /// was left out; a render of another shape goes through as it is.
 #[test]
@@ -1579,17 +1610,7 @@ fn a_shrunk_render_names_no_shading_variant() {
         let shot = dir.join("shrunk.png");
         write_image(&halved(&frame), &shot).unwrap();
         let (check, _) = check_image_file(&shot, &CheckOptions::default()).unwrap();
-        let f = check.fitted.as_ref().expect("a lab 3 image");
-        assert_eq!(
-            (f.hypothesis.figure(), f.variants()),
-            (figure, vec![]),
-            "{stage:?}"
-        );
-        assert!(
-            (f.shading.power - 1.1).abs() < 0.011,
-            "{stage:?}: {:?}",
-            f.shading
-        );
+        assert_plain_figure(&check, figure, Some(0.011), &format!("{stage:?}"));
     }
 }
 
@@ -1860,8 +1881,7 @@ fn known_slips_are_named() {
 /// rasterizer's rounding, and the resampling nothing about pi.
 #[test]
 fn a_render_resized_to_another_size_names_no_variant() {
-    use image::imageops::{resize, FilterType};
-    use rasterlab::app::check::{check_image_file, CheckOptions};
+    use rasterlab::app::check::{check_image_file, read_screenshot, CheckOptions};
     use rasterlab::app::{self as app, Settings};
     use rasterlab::measure::check::locate::blended_share;
     use rasterlab::{Figure, StageName};
@@ -1878,37 +1898,19 @@ fn a_render_resized_to_another_size_names_no_variant() {
         (StageName::PixelLight, 7),
     ] {
         let frame = handout_render(stage);
-        let rgb = image::RgbImage::from_raw(500, 500, frame.to_rgb8()).unwrap();
         for side in [375, 400, 450] {
             let shot = dir.join(format!("resized-{side}.png"));
-            let small = resize(&rgb, side, side, FilterType::Triangle);
-            small.save(&shot).unwrap();
-            let mut frame = Frame::new(side, side);
-            for (c, p) in frame.color.iter_mut().zip(small.pixels()) {
-                *c = u32::from(p[0]) << 16 | u32::from(p[1]) << 8 | u32::from(p[2]);
-            }
-            let share = blended_share(&frame).unwrap();
+            resized(&frame, side, side).save(&shot).unwrap();
+            let share = blended_share(&read_screenshot(&shot).unwrap()).unwrap();
             assert!(share > 0.2, "{stage:?} at {side}: {share}");
             let (check, _) = check_image_file(&shot, &CheckOptions::default()).unwrap();
-            let f = check.fitted.as_ref().expect("a lab 3 image");
-            assert_eq!(
-                (f.hypothesis.figure(), f.variants()),
-                (figure, vec![]),
-                "{stage:?} at {side}: {}",
-                check.text("shot")
-            );
+            let power = (figure > 5).then_some(0.03);
+            assert_plain_figure(&check, figure, power, &format!("{stage:?} at {side}"));
             assert!(
                 check.notes.iter().any(|n| n.contains("resized")),
                 "{:?}",
                 check.notes
             );
-            if figure > 5 {
-                assert!(
-                    (f.shading.power - 1.1).abs() < 0.03,
-                    "{stage:?} at {side}: {:?}",
-                    f.shading
-                );
-            }
         }
     }
 }
@@ -1962,32 +1964,22 @@ fn a_moved_camera_in_a_hidpi_screenshot_is_found_and_halved() {
 /// as resized, with its figure and no variant.
 #[test]
 fn a_resized_window_screenshot_is_found_and_checked_as_resized() {
-    use image::imageops::{resize, FilterType};
     use rasterlab::app::check::{check_image_file, CheckOptions};
     use rasterlab::StageName;
     let dir = temp_dir("check-resized-window");
     for (stage, figure) in [(StageName::Depth, 5), (StageName::PixelLight, 7)] {
-        let frame = handout_render(stage);
-        let window = in_window(&frame, 30, 4, 1);
-        let rgb = image::RgbImage::from_raw(window.width, window.height, window.to_rgb8()).unwrap();
+        let window = in_window(&handout_render(stage), 30, 4, 1);
         for (scale, side) in [(0.8f32, 399..=401), (1.5, 748..=751)] {
             let (w, h) = (window.width as f32 * scale, window.height as f32 * scale);
             let shot = dir.join("shot.png");
-            resize(&rgb, w as u32, h as u32, FilterType::Triangle)
-                .save(&shot)
-                .unwrap();
+            resized(&window, w as u32, h as u32).save(&shot).unwrap();
             let (check, _) = check_image_file(&shot, &CheckOptions::default()).unwrap();
             let case = format!("{stage:?} at {scale}: {}", check.text("shot"));
             let crop = check.crop.expect(&case);
             assert!(side.contains(&crop[2]), "{case}");
             assert!(check.notes[0].contains("title bar"), "{case}");
             assert!(check.notes[1].contains("resized"), "{case}");
-            let f = check.fitted.as_ref().expect(&case);
-            assert_eq!(
-                (f.hypothesis.figure(), f.variants()),
-                (figure, vec![]),
-                "{case}"
-            );
+            assert_plain_figure(&check, figure, None, &case);
         }
     }
 }

@@ -39,7 +39,7 @@ fn arguments(command: &str) -> Vec<String> {
 }
 
 #[test]
-fn every_command_in_a_code_block_parses_and_runs_as_written() {
+fn every_command_on_a_page_parses_as_written() {
     let mut pages = vec![root().join("README.md")];
     for dir in ["docs", "steps"] {
         for entry in std::fs::read_dir(root().join(dir)).unwrap() {

@@ -8,7 +8,7 @@ use crate::measure::check::image::{ImageCheck, Setup};
 use crate::measure::check::locate::{
     blended_edges, doubled, locate, locate_by_frame, pixel_doubled, shrunk,
 };
-use crate::measure::check::pose::{fit_pose, walls_in_place};
+use crate::measure::check::pose::{fit_pose, walls_in_place, MIN_POSE_SCORE};
 use crate::measure::check::rows::{check_rows, parse_rows_skipping, RowsCheck};
 use crate::measure::heat::heat_map_picture;
 use crate::pipeline::StageName;
@@ -69,11 +69,6 @@ pub fn read_screenshot(path: &Path) -> Result<Frame, String> {
     Ok(frame)
 }
 
-/// The share of pixels whose walls a fitted camera must put in place (see
-/// [`crate::measure::check::pose`]); the walked-around screenshots tried get 99.7 %
-/// and more.
-const MIN_POSE_SCORE: f64 = 0.97;
-
 /// Below this share of the walls' pixels in place from the given camera, the
 /// camera is fitted before anything else: the handout's images from the
 /// handout's pose have 99 % and more, even with a slip (a flip moves the
@@ -94,19 +89,7 @@ fn fit_camera(observed: &Frame, setup: &Setup, options: &CheckOptions) -> Option
             }
         }
     }
-    let mut pose = fit_pose(observed, setup.camera, &focals);
-    // The coarse search can settle on a focal length whose poses only look
-    // right at low resolution (a 640x480 window at f = 640 instead of 480): then
-    // each focal length is searched on its own and the best full-size score kept.
-    if pose.score < MIN_POSE_SCORE && focals.len() > 1 {
-        let tried = pose.camera.focal;
-        for f in focals.iter().filter(|&&f| f != tried) {
-            let alone = fit_pose(observed, setup.camera, std::slice::from_ref(f));
-            if alone.score > pose.score {
-                pose = alone;
-            }
-        }
-    }
+    let pose = fit_pose(observed, setup.camera, &focals);
     // A pose that puts fewer walls in place is a search that found nothing.
     if pose.score < MIN_POSE_SCORE {
         return None;

@@ -24,11 +24,6 @@ impl Progress {
         Self::new(std::io::stderr().is_terminal())
     }
 
-    /// Never shown.
-    pub fn hidden() -> Self {
-        Self::new(false)
-    }
-
     fn new(shown: bool) -> Self {
         Progress {
             shown,

@@ -400,21 +400,20 @@ pub fn pixel_doubled(image: &Frame) -> Option<Frame> {
         return None;
     }
     let at = |x: u32, y: u32| image.color[(y * image.width + x) as usize];
-    let mut uniform = 0u64;
-    let mut half = Frame::new(w, h);
-    for y in 0..h {
-        for x in 0..w {
-            let c = at(2 * x, 2 * y);
-            half.color[(y * w + x) as usize] = c;
-            let same = [(1, 0), (0, 1), (1, 1)]
-                .iter()
-                .all(|&(dx, dy)| at(2 * x + dx, 2 * y + dy) == c);
-            uniform += u64::from(same);
-        }
+    let uniform = (0..h)
+        .flat_map(|y| (0..w).map(move |x| (2 * x, 2 * y)))
+        .filter(|&(x, y)| {
+            let c = at(x, y);
+            at(x + 1, y) == c && at(x, y + 1) == c && at(x + 1, y + 1) == c
+        })
+        .count();
+    if (uniform as f64) < DOUBLED_BLOCKS * f64::from(w * h) {
+        return None;
     }
     // Something drawn: a plain colour (a black image) is uniform at any scale.
-    let changes = half.color.windows(2).filter(|p| p[0] != p[1]).count();
-    (changes >= 64 && uniform as f64 >= DOUBLED_BLOCKS * f64::from(w * h)).then_some(half)
+    let halved = half(image);
+    let changes = halved.color.windows(2).filter(|p| p[0] != p[1]).count();
+    (changes >= 64).then_some(halved)
 }
 
 /// `image` at twice its size, each pixel a 2 x 2 block.

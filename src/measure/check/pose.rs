@@ -351,10 +351,33 @@ pub fn walls_in_place(observed: &Frame, camera: &Camera) -> f64 {
     same as f64 / observed.color.len().max(1) as f64
 }
 
+/// The share of pixels whose walls a pose must put in place to be taken for the
+/// screenshot's; the walked-around screenshots tried get 99.7 % and more.
+pub const MIN_POSE_SCORE: f64 = 0.97;
+
 /// The pose that best explains `observed`, searched from `start` (whose image
-/// size is kept) with each of `focals` (the best of which is kept: each one
-/// gets the coarse grid, and the best starts of all are refined).
+/// size is kept) with each of `focals`: each one gets the coarse grid and the
+/// best starts of all are refined. The coarse grid can settle on a focal length
+/// whose poses only look right at low resolution (a 640x480 window drawn with
+/// f = 480 taken at f = 640); when the pose found is below [`MIN_POSE_SCORE`],
+/// each other focal length is searched on its own and the best full-size score
+/// kept.
 pub fn fit_pose(observed: &Frame, start: Camera, focals: &[f32]) -> Pose {
+    let mut pose = search(observed, start, focals);
+    if pose.score < MIN_POSE_SCORE {
+        let tried = pose.camera.focal;
+        for f in focals.iter().filter(|&&f| f != tried) {
+            let alone = search(observed, start, std::slice::from_ref(f));
+            if alone.score > pose.score {
+                pose = alone;
+            }
+        }
+    }
+    pose
+}
+
+/// One search of [`fit_pose`] over all of `focals` at once.
+fn search(observed: &Frame, start: Camera, focals: &[f32]) -> Pose {
     let mesh = cornell_box();
     // One pipeline and one frame for the whole search, drawn into again and
     // again (a few thousand poses).
