@@ -262,13 +262,26 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         surface: &Surface,
         target: &mut Target,
     ) {
-        let mut polygon = Polygon::from_slice(corners);
-        let mut clipped = false;
-        if let Some(n) = view.near {
-            if corners.iter().any(|c| !in_front(c, n)) {
-                polygon = clip_near(&polygon, n);
-                clipped = true;
+        let near_cut = view
+            .near
+            .is_some_and(|n| corners.iter().any(|c| !in_front(c, n)));
+        if !near_cut && !view.view_tests {
+            // The common case, a triangle in full view: three corners straight to
+            // the rasterizer, with no polygon to copy them through.
+            let mut projected = [ScreenVertex::default(); 3];
+            for (s, &c) in projected.iter_mut().zip(corners) {
+                match project::<_, I>(&view.projection, c) {
+                    Some(p) => *s = p,
+                    None => return, // a corner on the camera plane (only without clipping)
+                }
             }
+            self.stats.drawn += 1;
+            return self.fill::<S, BATCH>(stage, view, &projected, surface, target);
+        }
+        let mut polygon = Polygon::from_slice(corners);
+        let mut clipped = near_cut;
+        if near_cut {
+            polygon = clip_near(&polygon, view.near.unwrap_or_default());
         }
         let mut projected = Polygon::default();
         for &c in polygon.as_slice() {
@@ -289,6 +302,19 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         }
         self.stats.clipped += clipped as u64;
         self.stats.drawn += 1;
+        self.fill::<S, BATCH>(stage, view, projected.as_slice(), surface, target);
+    }
+
+    /// The projected polygon rasterized, each pixel through the depth test and the
+    /// pixel shader.
+    fn fill<S: Stage<Varying = V>, const BATCH: bool>(
+        &mut self,
+        stage: &S,
+        view: &View,
+        projected: &[ScreenVertex<V>],
+        surface: &Surface,
+        target: &mut Target,
+    ) {
         let (width, first_row) = (target.width as usize, target.rows.start as usize);
         // Empty unless the stage tests depth (`draw` checked it has a buffer then).
         let depth_buffer = target.depth.as_deref_mut().unwrap_or_default();
@@ -299,11 +325,8 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         // Counted where it is cheap: rejections are the rare branch, and a batch
         // counts its own pixels.
         let (mut rejected, mut written) = (0u64, 0u64);
-        self.raster.polygon(
-            &mut self.scratch,
-            projected.as_slice(),
-            &view.viewport,
-            |p| {
+        self.raster
+            .polygon(&mut self.scratch, projected, &view.viewport, |p| {
                 let i = (p.y as usize - first_row) * width + p.x as usize;
                 if !depth_test::<S>(depth_buffer, i, p.zinv) {
                     rejected += 1;
@@ -320,8 +343,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
                         color[i] = pack(stage.pixel_shader(&varying, surface));
                     }
                 }
-            },
-        );
+            });
         if BATCH {
             written = visible.index.len() as u64;
         }
