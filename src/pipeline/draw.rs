@@ -269,11 +269,8 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
             // The common case, a triangle in full view: three corners straight to
             // the rasterizer, with no polygon to copy them through.
             let mut projected = [ScreenVertex::default(); 3];
-            for (s, &c) in projected.iter_mut().zip(corners) {
-                match project::<_, I>(&view.projection, c) {
-                    Some(p) => *s = p,
-                    None => return, // a corner on the camera plane (only without clipping)
-                }
+            if !project_each::<_, I>(&view.projection, corners, |k, s| projected[k] = s) {
+                return;
             }
             self.stats.drawn += 1;
             return self.fill::<S, BATCH>(stage, view, &projected, surface, target);
@@ -284,11 +281,10 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
             polygon = clip_near(&polygon, view.near.unwrap_or_default());
         }
         let mut projected = Polygon::default();
-        for &c in polygon.as_slice() {
-            match project::<_, I>(&view.projection, c) {
-                Some(s) => projected.push(s),
-                None => return, // a corner on the camera plane (only without clipping)
-            }
+        if !project_each::<_, I>(&view.projection, polygon.as_slice(), |_, s| {
+            projected.push(s)
+        }) {
+            return;
         }
         if view.view_tests {
             if projected.is_empty() || off_screen(projected.as_slice(), &view.rect) {
@@ -417,6 +413,20 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
 #[inline]
 fn in_front<V>(c: &CameraVertex<V>, near: f32) -> bool {
     c.position.z >= near
+}
+
+/// Every corner projected and handed to `put` with its index; false, and nothing
+/// to draw, when one lies on the camera plane (possible only without clipping).
+#[inline]
+fn project_each<V: Varying, I: Interpolation>(
+    projection: &Projection,
+    corners: &[CameraVertex<V>],
+    mut put: impl FnMut(usize, ScreenVertex<V>),
+) -> bool {
+    corners
+        .iter()
+        .enumerate()
+        .all(|(k, &c)| project::<_, I>(projection, c).map(|s| put(k, s)).is_some())
 }
 
 /// The projection part of the handout's `VertexShader`: eq. 3 and 4 (relative to

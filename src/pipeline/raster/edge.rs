@@ -155,39 +155,41 @@ fn triangle<V: Varying>(
             varying: a.varying * w[0] + b.varying * w[1] + c.varying * w[2],
         }
     };
+    let step_x = edges.map(|(edge, _)| edge.dx * s);
+    let step_y = edges.map(|(edge, _)| edge.dy * s);
+    let bias = edges.map(|(edge, _)| edge.bias);
+    let advance = |e: &mut [i64; 3], step: [i64; 3], times: i64| {
+        for (v, d) in e.iter_mut().zip(step) {
+            *v += d * times;
+        }
+    };
     if columns < small_span {
         // A narrow box (most triangles of a fine mesh): every centre in it is
         // tested, which is cheaper than solving for each row's run with three
         // divisions. The same integers decide, so the same pixels and weights.
-        let mut row = edges.map(|(edge, from)| {
-            edge.at(from.x, from.y, s * first_i + h, s * first_j + h) - edge.bias
-        });
-        let bias = edges.map(|(edge, _)| edge.bias);
+        let mut row =
+            edges.map(|(edge, from)| edge.at(from.x, from.y, s * first_i + h, s * first_j + h));
         for j in first_j..=last_j {
             let mut e = row;
             for i in first_i..=last_i {
-                if (e[0] | e[1] | e[2]) >= 0 {
-                    plot(weighted([0, 1, 2].map(|k| e[k] + bias[k]), i, j));
+                if ((e[0] - bias[0]) | (e[1] - bias[1]) | (e[2] - bias[2])) >= 0 {
+                    plot(weighted(e, i, j));
                 }
-                for (v, (edge, _)) in e.iter_mut().zip(&edges) {
-                    *v += edge.dx * s;
-                }
+                advance(&mut e, step_x, 1);
             }
-            for (v, (edge, _)) in row.iter_mut().zip(&edges) {
-                *v += edge.dy * s;
-            }
+            advance(&mut row, step_y, 1);
         }
         return;
     }
     for j in first_j..=last_j {
         let py = s * j + h;
         let px = s * first_i + h;
-        let e0 = edges.map(|(edge, from)| edge.at(from.x, from.y, px, py));
+        let mut e = edges.map(|(edge, from)| edge.at(from.x, from.y, px, py));
         // The covered pixels of a row are one run: where each edge function, a
         // line in i, is at least its bias. Solved exactly in integers per edge.
         let (mut from, mut to) = (0, columns);
-        for (&v, (edge, _)) in e0.iter().zip(&edges) {
-            let (value, step) = (v - edge.bias, edge.dx * s);
+        for ((&v, b), step) in e.iter().zip(bias).zip(step_x) {
+            let value = v - b;
             match step.signum() {
                 1 => from = from.max(-value.div_euclid(step)),
                 -1 => to = to.min(value.div_euclid(-step)),
@@ -195,15 +197,10 @@ fn triangle<V: Varying>(
                 _ => {}
             }
         }
-        let mut e = e0;
-        for (v, (edge, _)) in e.iter_mut().zip(&edges) {
-            *v += edge.dx * s * from.max(0);
-        }
+        advance(&mut e, step_x, from.max(0));
         for t in from.max(0)..=to {
             plot(weighted(e, first_i + t, j));
-            for (v, (edge, _)) in e.iter_mut().zip(&edges) {
-                *v += edge.dx * s;
-            }
+            advance(&mut e, step_x, 1);
         }
     }
 }
