@@ -739,7 +739,7 @@ fn bad_input_is_a_one_line_error() {
         err.starts_with(&format!("error: cannot read {}: ", p("text.png"))),
         "{err}"
     );
-    // A JPEG (its first bytes, as a phone or a web page saves one) is named.
+    // A JPEG cut short after its first bytes is named as such, on one line.
     std::fs::write(
         p("photo.jpg"),
         b"\xff\xd8\xff\xe0\x00\x10JFIF\x00\x01\x01\x00\x00\x01\x00\x01\x00\x00",
@@ -749,7 +749,7 @@ fn bad_input_is_a_one_line_error() {
         &["check", &p("photo.jpg")],
         2,
         &format!(
-            "error: cannot read {}: a JPEG image, which is not read: save the screenshot as PNG (a JPEG's compression also blurs the edges a check compares)",
+            "error: cannot read {}: a damaged or cut-short JPEG image (Format error decoding Jpeg: I/O errors Not enough bytes, expected 1 but found 0)",
             p("photo.jpg")
         ),
     );
@@ -1982,4 +1982,140 @@ fn a_resized_window_screenshot_is_found_and_checked_as_resized() {
             assert_plain_figure(&check, figure, None, &case);
         }
     }
+}
+
+/// `frame` saved as a JPEG of `quality` by the image crate's encoder.
+fn as_jpeg(frame: &Frame, quality: u8, path: &std::path::Path) {
+    use image::codecs::jpeg::JpegEncoder;
+    use image::ImageEncoder;
+    let file = std::fs::File::create(path).unwrap();
+    JpegEncoder::new_with_quality(std::io::BufWriter::new(file), quality)
+        .write_image(
+            &frame.to_rgb8(),
+            frame.width,
+            frame.height,
+            image::ExtendedColorType::Rgb8,
+        )
+        .unwrap();
+}
+
+/// A JPEG is read and checked as far as its compression lets it be: the figure,
+/// the light and the pose are found, the render is cut out of a window or a
+/// desktop to the pixel, no variant is read off its noise, and it never counts
+/// as the handout's figure to 2/255 (exit status 1). The committed screenshot
+/// was saved by libjpeg-turbo (Pillow, quality 85, chroma halved both ways):
+/// `rasterlab pixel-light --camera 0.2,-0.1,-3.4 --yaw 6` in a 504 x 534 window
+/// (a 30-pixel bar) at (300, 120) of a 1280 x 800 desktop.
+#[test]
+fn a_jpeg_screenshot_is_checked_as_far_as_it_shows() {
+    use rasterlab::app::check::{check_image_file, CheckOptions};
+    use rasterlab::StageName;
+    let dir = temp_dir("check-jpeg");
+    let lit = handout_render(StageName::PixelLight);
+    let depth = handout_render(StageName::Depth);
+    let cases = [
+        ("lit-75.jpg", lit.clone(), 75, 7, None),
+        ("lit-95.jpg", lit.clone(), 95, 7, None),
+        ("depth-85.jpg", depth.clone(), 85, 5, None),
+        (
+            "window.jpg",
+            in_window(&lit, 30, 3, 1),
+            85,
+            7,
+            Some([3, 30, 500, 500]),
+        ),
+        (
+            "desktop.jpg",
+            on_desktop(&in_window(&depth, 30, 2, 1), 300, 120),
+            85,
+            5,
+            Some([302, 150, 500, 500]),
+        ),
+    ];
+    for (name, frame, quality, figure, crop) in cases {
+        let path = dir.join(name);
+        as_jpeg(&frame, quality, &path);
+        let (check, _) = check_image_file(&path, &CheckOptions::default()).unwrap();
+        assert_plain_figure(&check, figure, Some(0.02).filter(|_| figure == 7), name);
+        assert_eq!(check.crop, crop, "{name}");
+        assert!(check.lossy && !check.is_handouts_figure(None), "{name}");
+        let note = check.notes.iter().find(|n| n.contains("JPEG"));
+        assert!(
+            note.is_some_and(|n| n.starts_with("the image is a JPEG")),
+            "{name}: {:?}",
+            check.notes
+        );
+        assert!(!check.notes.iter().any(|n| n.contains("shrunk")), "{name}");
+        let text = check.text(name);
+        assert!(
+            text.contains(&format!("Figure {figure} (")) && text.contains("as far as a JPEG shows"),
+            "{name}: {text}"
+        );
+        assert!(check.json(name).contains("\"jpeg\":true"), "{name}");
+        assert!(
+            check.fitted.as_ref().unwrap().errors.interior_rmse < 3.0,
+            "{name}"
+        );
+    }
+    // Written by libjpeg: the window found by its frame, the pose fitted.
+    let shot = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/screenshots/walked-window-on-desktop-libjpeg-q85.jpg");
+    let (check, _) = check_image_file(&shot, &CheckOptions::default()).unwrap();
+    assert_plain_figure(&check, 7, Some(0.02), "libjpeg");
+    assert_eq!(check.crop, Some([302, 150, 500, 500]));
+    let c = check.camera.expect("a fitted camera");
+    assert!(
+        (c.position - Vec3::new(0.2, -0.1, -3.4))
+            .abs()
+            .max_element()
+            < 0.02,
+        "{:?}",
+        c.position
+    );
+    assert!((c.yaw.to_degrees() - 6.0).abs() < 0.5 && c.pitch.to_degrees().abs() < 0.5);
+    // A moved light in a JPEG, with --fit-light: found, and no variant made up.
+    let moved = rasterlab::app::Settings {
+        light: rasterlab::Light {
+            position: Vec3::new(-0.3, 0.2, 0.1),
+            power: Vec3::splat(3.0),
+            ..rasterlab::Light::handout()
+        },
+        ..rasterlab::app::Settings::default()
+    };
+    let frame = rasterlab::app::render(
+        rasterlab::Figure::of(StageName::PixelLight),
+        &cornell_box(),
+        &moved,
+        None,
+    )
+    .0;
+    let path = dir.join("moved-light.jpg");
+    as_jpeg(&frame, 85, &path);
+    let fit = CheckOptions {
+        fit_light: true,
+        ..CheckOptions::default()
+    };
+    let (check, _) = check_image_file(&path, &fit).unwrap();
+    let f = check.fitted.expect("a lab 3 image");
+    assert_eq!((f.hypothesis.figure(), f.variants()), (7, vec![]));
+    assert!(
+        (f.light - moved.light.position).length() < 0.05,
+        "{:?}",
+        f.light
+    );
+    assert!(
+        (f.shading.power / 3.0 - 1.0).abs() < 0.02,
+        "{}",
+        f.shading.power
+    );
+    // Noise saved as a JPEG is still no lab 3 image.
+    let mut seed = 7u64;
+    let mut photo = Frame::new(320, 240);
+    for c in photo.color.iter_mut() {
+        *c = noise(&mut seed);
+    }
+    let path = dir.join("noise.jpg");
+    as_jpeg(&photo, 85, &path);
+    let (check, _) = check_image_file(&path, &CheckOptions::default()).unwrap();
+    assert!(check.fitted.is_none());
 }

@@ -13,7 +13,7 @@ use crate::measure::check::rows::{check_rows, parse_rows_skipping, RowsCheck};
 use crate::measure::heat::heat_map_picture;
 use crate::pipeline::StageName;
 use crate::pipeline::{Camera, Frame};
-use crate::scene::input::{read_image, read_text_bounded, read_text_file, ImageLimit};
+use crate::scene::input::{is_jpeg, read_image, read_text_bounded, read_text_file, ImageLimit};
 use glam::Vec3;
 use std::path::{Path, PathBuf};
 
@@ -52,7 +52,7 @@ pub struct CheckOptions {
     pub out: Option<PathBuf>,
 }
 
-/// Reads a PNG or BMP screenshot as a frame (alpha is dropped); one larger than
+/// Reads a PNG, JPEG, BMP or GIF screenshot as a frame (alpha is dropped); one larger than
 /// [`MAX_CHECK_SIDE`] is refused from its header, before it is decoded.
 pub fn read_screenshot(path: &Path) -> Result<Frame, String> {
     let limit = ImageLimit {
@@ -198,6 +198,9 @@ fn check_image_named(
     options: &CheckOptions,
 ) -> Result<(ImageCheck, Vec<PathBuf>), CheckError> {
     let mut observed = read_screenshot(path).map_err(CheckError::Run)?;
+    // A JPEG's blocks blur every edge and move every colour a little: checked
+    // as an image resampled, and its pixels not held to 2/255.
+    let lossy = is_jpeg(path);
     // A window screenshot: the render inside it, unless the command line fixes
     // the size or the camera (then the image is taken as it is).
     let fixed = options.size.is_some() || options.focal.is_some() || options.camera.is_some();
@@ -205,7 +208,7 @@ fn check_image_named(
     if !fixed && observed.width != observed.height {
         // The handout's figures first; a camera moved elsewhere leaves the
         // window's frame to find the render by.
-        located = locate(&observed).or_else(|| locate_by_frame(&observed));
+        located = locate(&observed, lossy).or_else(|| locate_by_frame(&observed));
     }
     if let Some(l) = &located {
         observed = l.frame.clone();
@@ -221,13 +224,13 @@ fn check_image_named(
         observed = h;
     }
     // A screenshot shrunk to half: checked at the size it was drawn.
-    let blended = !fixed && shrunk(&observed);
+    let blended = !fixed && !lossy && shrunk(&observed);
     if blended {
         observed = doubled(&observed);
     }
     // Resized to another size, or anti-aliased: checked as it is, its edges
     // taken for no rasterizer's.
-    let resized = !blended && blended_edges(&observed);
+    let resized = !blended && (lossy || blended_edges(&observed));
     let (w, h) = (observed.width, observed.height);
     if let Some((sw, sh)) = options.size {
         if (sw, sh) != (w, h) {
@@ -255,6 +258,7 @@ fn check_image_named(
     setup.fit_light = options.fit_light;
     setup.edges_exact = !(blended || resized);
     setup.resampled = blended || resized;
+    setup.lossy = lossy;
     // Mostly black: points, lines, or nothing; there are no walls to place.
     let lit = observed
         .color
@@ -413,7 +417,9 @@ fn check_image_named(
     if shown_doubled {
         check.notes.insert(0, format!("the image is its render at twice the size, each pixel a 2 x 2 block (as a HiDPI screen shows a window); it was checked halved, at {w}x{h}"));
     }
-    if resized {
+    if lossy {
+        check.notes.insert(0, "the image is a JPEG, whose compression blurs every edge and moves colours by a few levels: it was checked as it is, its pixels not held to 2/255, and no variant was looked for on its edges or in half a level (truncated colours); save the screenshot as PNG to check it to the pixel".to_string());
+    } else if resized {
         check.notes.insert(0, "the colours either side of the image's edges are blended, which no rasterizer without anti-aliasing draws: it was resized (to a size other than half) or drawn anti-aliased; it was checked as it is, and no variant was looked for on its edges".to_string());
     }
     if let Some(l) = located {

@@ -88,7 +88,16 @@ pub fn read_image(path: &Path, limit: ImageLimit) -> Result<image::DynamicImage,
         .with_guessed_format()
         .map_err(|e| format!("cannot read: {e}"))?;
     reader.limits(limits);
-    reader.decode().map_err(|e| e.to_string())
+    let format = reader.format();
+    reader.decode().map_err(|e| damaged(format, e))
+}
+
+/// Whether the file at `path` is a JPEG, by its first bytes (false when it
+/// cannot be read: reading it says why).
+pub fn is_jpeg(path: &Path) -> bool {
+    let mut start = [0u8; 3];
+    open_regular(path).is_ok_and(|mut f| f.read_exact(&mut start).is_ok())
+        && start == [0xff, 0xd8, 0xff]
 }
 
 /// An image's width and height, from its header alone.
@@ -99,19 +108,38 @@ pub fn image_size(path: &Path) -> Result<(u32, u32), String> {
     match reader.format() {
         // What a text file or a truncated header gets.
         None => {
-            return Err("not a PNG, BMP or GIF image (its first bytes are none of those)".into())
+            return Err(
+                "not a PNG, JPEG, BMP or GIF image (its first bytes are none of those)".into(),
+            )
         }
-        Some(image::ImageFormat::Png | image::ImageFormat::Bmp | image::ImageFormat::Gif) => {}
-        // A JPEG's blocks would blur every edge a check reads; other formats
-        // are not built in.
+        Some(
+            image::ImageFormat::Png
+            | image::ImageFormat::Jpeg
+            | image::ImageFormat::Bmp
+            | image::ImageFormat::Gif,
+        ) => {}
+        // Other formats are not built in.
         Some(f) => {
             let name = format!("{f:?}").to_uppercase();
             return Err(format!(
-                "a {name} image, which is not read: save the screenshot as PNG (a JPEG's compression also blurs the edges a check compares)"
+                "a {name} image, which is not read: save it as PNG (or JPEG, BMP, GIF)"
             ));
         }
     }
-    reader.into_dimensions().map_err(|e| e.to_string())
+    let format = reader.format();
+    reader.into_dimensions().map_err(|e| damaged(format, e))
+}
+
+/// Why an image of `format` could not be decoded, on one line (the decoders'
+/// messages can run over several).
+fn damaged(format: Option<image::ImageFormat>, e: image::ImageError) -> String {
+    let kind = format.map_or("".into(), |f| format!("{f:?} ").to_uppercase());
+    let why = e
+        .to_string()
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ");
+    format!("a damaged or cut-short {kind}image ({why})")
 }
 
 #[cfg(test)]

@@ -128,7 +128,12 @@ pub(super) fn best_shading(
     }
     let mut best: Option<(Shading, Errors)> = None;
     // The plainest first: each later one must match clearly more pixels.
-    for (rho_squared, truncated) in [(false, false), (false, true), (true, false), (true, true)] {
+    // A JPEG's compression hides half a level: its colours are taken as rounded.
+    let packings: &[(bool, bool)] = match setup.lossy {
+        true => &[(false, false), (true, false)],
+        false => &[(false, false), (false, true), (true, false), (true, true)],
+    };
+    for &(rho_squared, truncated) in packings {
         let (p, n) = fit_light(
             m,
             observed,
@@ -240,7 +245,7 @@ fn fitted(
 ) -> Fitted {
     let mut best: Option<(Shading, Errors)> = None;
     for (rho_squared, truncated) in [(false, false), (false, true), (true, false), (true, true)] {
-        if !h.lit() && (truncated || rho_squared) {
+        if (!h.lit() && (truncated || rho_squared)) || (setup.lossy && truncated) {
             continue;
         }
         // ρ twice only where ρ once leaves the interiors off: this runs for
@@ -595,6 +600,7 @@ pub fn check_image(observed: &Frame, setup: &Setup) -> ImageCheck {
         remaining,
         expected,
         light_searched: setup.fit_light,
+        lossy: setup.lossy,
         notes: Vec::new(),
         adjusted: false,
         camera: None,

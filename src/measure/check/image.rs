@@ -65,6 +65,10 @@ pub struct Setup {
     /// Whether the image was resampled (shrunk, and checked doubled): its
     /// interiors are means of pixels, too rough to tell π as 3.14 from π.
     pub resampled: bool,
+    /// Whether the image was stored with lossy compression (a JPEG): every
+    /// colour moved by a few levels, too much to tell truncated colours (half a
+    /// level) from rounded ones.
+    pub lossy: bool,
 }
 
 impl Setup {
@@ -84,6 +88,7 @@ impl Setup {
             stage: None,
             edges_exact: true,
             resampled: false,
+            lossy: false,
         }
     }
 }
@@ -702,6 +707,8 @@ pub struct ImageCheck {
     pub camera: Option<crate::pipeline::Camera>,
     /// Where the render was found inside a screenshot: x, y, width, height.
     pub crop: Option<[u32; 4]>,
+    /// Whether the image is a JPEG, whose pixels are not compared to 2/255.
+    pub lossy: bool,
 }
 
 impl ImageCheck {

@@ -37,15 +37,25 @@ const SAMPLES: u32 = 48;
 /// The largest shorter side searched at full scale.
 const MAX_FULL_SIDE: u32 = 1100;
 
+/// How many pixels a JPEG's square may slide from where the samples put it.
+const MAX_SLIDE: u32 = 12;
+
 /// The share of samples a located render must match.
 const MIN_SCORE: f64 = 0.9;
 
 /// The render inside `shot`, if `shot` holds one with a frame around it (see the
-/// module's rules); `None` when it is a plain render or holds none.
-pub fn locate(shot: &Frame) -> Option<Located> {
+/// module's rules); `None` when it is a plain render or holds none. In a `lossy`
+/// screenshot (a JPEG) no edge is sharp and no colour exact: there the half
+/// scale, whose means smooth the noise away and so always score a little
+/// higher, is searched only when the full scale holds no render, and the
+/// square is placed by its summed difference from the figure.
+pub fn locate(shot: &Frame, lossy: bool) -> Option<Located> {
     let mut figures = Figures::default();
     let mut best: Option<(f64, u32, u32, u32, u32)> = None; // score, scale, side, x, y
     for scale in [1u32, 2] {
+        if scale == 2 && lossy && best.is_some_and(|b| b.0 >= MIN_SCORE) {
+            break;
+        }
         let image = match scale {
             1 => shot.clone(),
             _ if shot.width.min(shot.height) >= 2 * 64 => half(shot),
@@ -71,7 +81,17 @@ pub fn locate(shot: &Frame) -> Option<Located> {
     let image = if scale == 1 { shot.clone() } else { half(shot) };
     // The samples cannot tell a square one pixel off (a row of the title bar
     // in, a row of the render out); every pixel can.
-    let (side, x, y) = polish(&image, side, x, y, &mut figures);
+    let (mut side, mut x, mut y) = polish(&image, side, x, y, &mut figures, lossy);
+    // A JPEG's samples can leave the square a few pixels off (all within
+    // 16/255 of a figure a little larger): polished until it stays, each round
+    // moving it a pixel at most.
+    for _ in 0..MAX_SLIDE {
+        let again = polish(&image, side, x, y, &mut figures, lossy);
+        if !lossy || again == (side, x, y) {
+            break;
+        }
+        (side, x, y) = again;
+    }
     let whole = (x, y, side, side) == (0, 0, image.width, image.height);
     if score < MIN_SCORE || (whole && scale == 1) {
         return None;
@@ -178,9 +198,20 @@ fn coloured_bounds(image: &Frame) -> Option<[u32; 4]> {
 }
 
 /// The square within a pixel of (`side`, `x`, `y`) whose pixels are nearest the
-/// best figure's: the most within 16/255.
-fn polish(image: &Frame, side: u32, x: u32, y: u32, figures: &mut Figures) -> (u32, u32, u32) {
-    let mut best = (0usize, side, x, y);
+/// best figure's: the most within 16/255, or in a `lossy` image (whose blurred
+/// edges are off by more than that on either side of the right place) the least
+/// mean difference.
+fn polish(
+    image: &Frame,
+    side: u32,
+    x: u32,
+    y: u32,
+    figures: &mut Figures,
+    lossy: bool,
+) -> (u32, u32, u32) {
+    // Larger is better: the count of close pixels, or the mean difference (in
+    // 1/1024 levels, a whole number) negated.
+    let mut best = (i64::MIN, side, x, y);
     for s in side.saturating_sub(1).max(16)..=side + 1 {
         if s > image.width || s > image.height {
             continue;
@@ -189,16 +220,26 @@ fn polish(image: &Frame, side: u32, x: u32, y: u32, figures: &mut Figures) -> (u
         let around = |v: u32, most: u32| v.saturating_sub(1)..=(v + 1).min(most);
         for v in around(y, image.height - s) {
             for u in around(x, image.width - s) {
+                let pixels = || (0..s).flat_map(|j| (0..s).map(move |i| (i, j)));
                 let near = drawn
                     .iter()
-                    .map(|f| {
-                        (0..s)
-                            .flat_map(|j| (0..s).map(move |i| (i, j)))
+                    .map(|f| match lossy {
+                        false => pixels()
                             .filter(|&(i, j)| close(image.rgb(u + i, v + j), f.rgb(i, j)))
-                            .count()
+                            .count() as i64,
+                        true => {
+                            -pixels()
+                                .map(|(i, j)| {
+                                    let (a, b) = (image.rgb(u + i, v + j), f.rgb(i, j));
+                                    (0..3).map(|k| a[k].abs_diff(b[k]) as i64).sum::<i64>()
+                                })
+                                .sum::<i64>()
+                                * 1024
+                                / (s as i64 * s as i64)
+                        }
                     })
                     .max()
-                    .unwrap_or(0);
+                    .unwrap_or(i64::MIN);
                 if near > best.0 {
                     best = (near, s, u, v);
                 }
