@@ -1484,6 +1484,28 @@ fn a_moved_camera_is_found() {
             0.0,
             5,
         ),
+        // A square other than 500 with f = its side: f = 500 a little farther
+        // back frames the box almost alike (99.2 % of the walls in place).
+        (
+            480,
+            480,
+            480,
+            StageName::PixelLight,
+            [0.2, -0.1, -3.4],
+            6.0,
+            0.0,
+            7,
+        ),
+        (
+            480,
+            480,
+            480,
+            StageName::Depth,
+            [0.3, -0.2, -4.5],
+            8.0,
+            -5.0,
+            5,
+        ),
     ];
     for (width, height, focal, stage, at, yaw, pitch, figure) in poses {
         let walked = Settings {
