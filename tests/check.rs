@@ -2141,3 +2141,35 @@ fn a_jpeg_screenshot_is_checked_as_far_as_it_shows() {
     let (check, _) = check_image_file(&path, &CheckOptions::default()).unwrap();
     assert!(check.fitted.is_none());
 }
+
+/// A photo-like picture of another shape than the render's: no lab 3 image,
+/// and no render said to be cut out of it (a frame can seem to hold one).
+#[test]
+fn no_render_is_cut_out_of_a_photo() {
+    use rasterlab::app::check::{check_image_file, CheckOptions};
+    use rasterlab::app::image_io::write_image;
+    let dir = temp_dir("check-photo");
+    let mut seed = 1u64;
+    let mut photo = Frame::new(500, 375);
+    for (i, c) in photo.color.iter_mut().enumerate() {
+        let (x, y) = (i as u32 % 500, i as u32 / 500);
+        let n = noise(&mut seed);
+        let (r, g, b) = (
+            x / 2 + (n & 31),
+            y / 2 + (n >> 8 & 31),
+            120 + (n >> 16 & 31),
+        );
+        *c = r.min(255) << 16 | g.min(255) << 8 | b;
+    }
+    let path = dir.join("photo.png");
+    write_image(&photo, &path).unwrap();
+    let (check, _) = check_image_file(&path, &CheckOptions::default()).unwrap();
+    assert!(check.fitted.is_none());
+    assert_eq!(
+        (check.crop, check.notes.len()),
+        (None, 0),
+        "{:?}",
+        check.notes
+    );
+    assert_eq!((check.width, check.height), (500, 375));
+}

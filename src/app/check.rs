@@ -201,6 +201,7 @@ fn check_image_named(
     // A JPEG's blocks blur every edge and move every colour a little: checked
     // as an image resampled, and its pixels not held to 2/255.
     let lossy = is_jpeg(path);
+    let whole = (observed.width, observed.height);
     // A window screenshot: the render inside it, unless the command line fixes
     // the size or the camera (then the image is taken as it is).
     let fixed = options.size.is_some() || options.focal.is_some() || options.camera.is_some();
@@ -391,6 +392,15 @@ fn check_image_named(
             check.adjusted = true;
             setup = at_3;
         }
+    }
+    // A frame found around something that is no lab image (a photo's edges)
+    // held no render: the image is checked whole, as it was given.
+    if located.is_some() && check.fitted.is_none() {
+        let as_given = CheckOptions {
+            size: Some(whole),
+            ..options.clone()
+        };
+        return check_image_named(path, stem, &as_given);
     }
     // A lit stage asked for on an image without direct light is contradicted,
     // not forced: P = 0 would call any flat image "Figure 7".
