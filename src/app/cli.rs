@@ -87,7 +87,8 @@ pub enum Command {
     /// reproduces it, what was done differently from the handout, and where it
     /// still differs.
     ///
-    /// `rasterlab check shot.png` reads a PNG or BMP of any size; `rasterlab check
+    /// `rasterlab check shot.png` reads a PNG, BMP or JPEG of any size (a JPEG
+    /// only as far as its compression shows); `rasterlab check
     /// submissions/` (or several files) checks every file, in parallel, one row
     /// each; `rasterlab check rows FILE 10,5 5,10 15,15` compares a printed
     /// ComputePolygonRows output instead. docs/check.md shows a report.
@@ -904,7 +905,7 @@ pub struct RowsArgs {
 pub struct CheckArgs {
     #[command(subcommand)]
     pub rows: Option<CheckRows>,
-    /// The screenshot: a PNG or BMP of any size (the size sets the camera's
+    /// The screenshot: a PNG, BMP or JPEG of any size (the size sets the camera's
     /// screen; the focal length is the height unless --focal gives it). Several
     /// files, or folders (every file in them, recursively), give one row each.
     #[arg(value_name = "IMAGE|DIR", required = true, num_args = 1..)]
