@@ -2173,3 +2173,81 @@ fn no_render_is_cut_out_of_a_photo() {
     );
     assert_eq!((check.width, check.height), (500, 375));
 }
+
+/// `frame` as a macOS window screenshot: a 28-pixel title bar with the red,
+/// yellow and green buttons above it, no side borders, and around the window
+/// `pad` pixels of a soft shadow on a transparent canvas (alpha, as the PNG
+/// such a screenshot is).
+fn mac_window(frame: &Frame, pad: u32) -> image::RgbaImage {
+    let (w, h) = (frame.width + 2 * pad, frame.height + 28 + 2 * pad);
+    let window =
+        |x: u32, y: u32| (pad..pad + frame.width).contains(&x) && (pad..h - pad).contains(&y);
+    image::RgbaImage::from_fn(w, h, |x, y| {
+        if !window(x, y) {
+            // The shadow fades over 20 pixels from the window's side.
+            let dx = pad
+                .saturating_sub(x)
+                .max(x.saturating_sub(pad + frame.width - 1));
+            let dy = pad.saturating_sub(y).max(y.saturating_sub(h - pad - 1));
+            let alpha = 100u32.saturating_sub(dx.max(dy) * 5) as u8;
+            return image::Rgba([0, 0, 0, alpha]);
+        }
+        let (u, v) = (x - pad, y - pad);
+        if v >= 28 {
+            let [r, g, b] = frame.rgb(u, v - 28);
+            return image::Rgba([r, g, b, 255]);
+        }
+        let buttons = [[255, 95, 87], [254, 188, 46], [40, 200, 64]];
+        for (i, [r, g, b]) in buttons.into_iter().enumerate() {
+            let (cx, cy) = (14 + 20 * i as i32, 14);
+            let (du, dv) = (u as i32 - cx, v as i32 - cy);
+            if du * du + dv * dv <= 36 {
+                return image::Rgba([r, g, b, 255]);
+            }
+        }
+        image::Rgba([236, 236, 236, 255])
+    })
+}
+
+/// A macOS window screenshot (buttons coloured like the box's walls, a shadow
+/// on transparency): the render is found, at the handout's pose by its figure
+/// and from a walked camera by its frame, and the pose fitted.
+#[test]
+fn a_macos_window_screenshot_is_found() {
+    use rasterlab::app::check::{check_image_file, CheckOptions};
+    use rasterlab::app::{self as app, Settings};
+    use rasterlab::{Figure, StageName};
+    let dir = temp_dir("check-macos");
+    let lit = handout_render(StageName::PixelLight);
+    let walked = Settings {
+        camera: rasterlab::Camera {
+            position: Vec3::new(0.3, -0.2, -4.5),
+            yaw: 8f32.to_radians(),
+            pitch: (-5f32).to_radians(),
+            ..rasterlab::Camera::handout(500, 500)
+        },
+        ..Settings::default()
+    };
+    let (moved, _) = app::render(Figure::of(StageName::Depth), &cornell_box(), &walked, None);
+    for (name, frame, figure) in [("lit.png", &lit, 7), ("walked.png", &moved, 5)] {
+        let path = dir.join(name);
+        mac_window(frame, 40).save(&path).unwrap();
+        let (check, _) = check_image_file(&path, &CheckOptions::default()).unwrap();
+        assert_plain_figure(&check, figure, None, name);
+        assert_eq!(
+            check.crop,
+            Some([40, 68, 500, 500]),
+            "{name}: {:?}",
+            check.notes
+        );
+        if figure == 7 {
+            assert!(check.is_handouts_figure(None), "{}", check.text(name));
+        } else {
+            let c = check.camera.expect("a fitted camera");
+            let off = (c.position - walked.camera.position).abs();
+            assert!(off.max_element() < 0.02, "{c:?}");
+            assert!((c.yaw.to_degrees() - 8.0).abs() < 0.5, "{c:?}");
+            assert!((c.pitch.to_degrees() + 5.0).abs() < 0.5, "{c:?}");
+        }
+    }
+}

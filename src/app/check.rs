@@ -52,8 +52,10 @@ pub struct CheckOptions {
     pub out: Option<PathBuf>,
 }
 
-/// Reads a PNG, JPEG, BMP or GIF screenshot as a frame (alpha is dropped); one larger than
-/// [`MAX_CHECK_SIDE`] is refused from its header, before it is decoded.
+/// Reads a PNG, JPEG, BMP or GIF screenshot as a frame, on white where it is
+/// transparent (as an image viewer shows it: a macOS window screenshot's shadow
+/// and corners); one larger than [`MAX_CHECK_SIDE`] is refused from its header,
+/// before it is decoded.
 pub fn read_screenshot(path: &Path) -> Result<Frame, String> {
     let limit = ImageLimit {
         max_side: MAX_CHECK_SIDE,
@@ -61,10 +63,12 @@ pub fn read_screenshot(path: &Path) -> Result<Frame, String> {
     };
     let img =
         read_image(path, limit).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-    let rgb = img.to_rgb8();
-    let mut frame = Frame::new(rgb.width(), rgb.height());
-    for (c, p) in frame.color.iter_mut().zip(rgb.pixels()) {
-        *c = (p[0] as u32) << 16 | (p[1] as u32) << 8 | p[2] as u32;
+    let rgba = img.to_rgba8();
+    let mut frame = Frame::new(rgba.width(), rgba.height());
+    for (c, p) in frame.color.iter_mut().zip(rgba.pixels()) {
+        let a = p[3] as u32;
+        let [r, g, b] = [p[0], p[1], p[2]].map(|v| (v as u32 * a + 255 * (255 - a) + 127) / 255);
+        *c = r << 16 | g << 8 | b;
     }
     Ok(frame)
 }

@@ -181,21 +181,71 @@ fn positions(image: &Frame, side: u32, xs: [u32; 2], ys: [u32; 2]) -> Vec<(u32, 
 
 /// The bounds (x0, y0, x1, y1, inclusive) of the pixels coloured like the box's
 /// red, green, blue, yellow, cyan or purple surfaces, when there are enough of
-/// them (a hundredth of the image) to be walls.
+/// them (a hundredth of the image) to be walls. Specks of such colour apart from
+/// the walls (a window's red, yellow and green buttons, an icon) are left out:
+/// only patches (of pixels at most [`BRIDGE`] apart) of at least [`MIN_PATCH`]
+/// of the coloured pixels count.
 fn coloured_bounds(image: &Frame) -> Option<[u32; 4]> {
     let classes = Classes::of(&cornell_box());
-    let (mut b, mut count) = ([u32::MAX, u32::MAX, 0, 0], 0usize);
-    for y in 0..image.height {
-        for x in 0..image.width {
-            let c = image.color[(y * image.width + x) as usize];
-            if classes.coloured(c) {
-                b = [b[0].min(x), b[1].min(y), b[2].max(x), b[3].max(y)];
-                count += 1;
+    let (w, h) = (image.width as usize, image.height as usize);
+    let coloured: Vec<bool> = image.color.iter().map(|&c| classes.coloured(c)).collect();
+    let count = coloured.iter().filter(|&&c| c).count();
+    if count * 100 < image.color.len() {
+        return None;
+    }
+    // Each patch of coloured pixels, found by a flood fill.
+    let mut seen = vec![false; coloured.len()];
+    let mut stack = Vec::new();
+    let mut b = [u32::MAX, u32::MAX, 0, 0];
+    for start in 0..coloured.len() {
+        if !coloured[start] || seen[start] {
+            continue;
+        }
+        seen[start] = true;
+        stack.push(start);
+        let (mut patch, mut size) = ([u32::MAX, u32::MAX, 0, 0], 0usize);
+        while let Some(i) = stack.pop() {
+            let (x, y) = (i % w, i / w);
+            patch = [
+                patch[0].min(x as u32),
+                patch[1].min(y as u32),
+                patch[2].max(x as u32),
+                patch[3].max(y as u32),
+            ];
+            size += 1;
+            for v in y.saturating_sub(BRIDGE)..(y + BRIDGE + 1).min(h) {
+                for u in x.saturating_sub(BRIDGE)..(x + BRIDGE + 1).min(w) {
+                    let j = v * w + u;
+                    if coloured[j] && !seen[j] {
+                        seen[j] = true;
+                        stack.push(j);
+                    }
+                }
             }
         }
+        if size as f64 >= MIN_PATCH * count as f64 {
+            b = [
+                b[0].min(patch[0]),
+                b[1].min(patch[1]),
+                b[2].max(patch[2]),
+                b[3].max(patch[3]),
+            ];
+        }
     }
-    (count * 100 >= image.color.len()).then_some(b)
+    // Only specks, none a patch: no walls.
+    (b[0] <= b[2]).then_some(b)
 }
+
+/// How far apart two coloured pixels may be and still be of one patch, in
+/// pixels along each axis: a JPEG's noise and a shaded wall's darkest corner
+/// break a wall into crumbs a pixel or two apart, while a window's buttons are
+/// eight pixels and more from the render.
+const BRIDGE: usize = 3;
+
+/// The share of all the coloured pixels a patch must hold to be part of the
+/// walls: the handout's walls are patches of thousands of pixels each, a
+/// window's buttons a hundred (0.1 % of a 500 x 500 render's coloured pixels).
+const MIN_PATCH: f64 = 0.01;
 
 /// The square within a pixel of (`side`, `x`, `y`) whose pixels are nearest the
 /// best figure's: the most within 16/255, or in a `lossy` image (whose blurred
@@ -474,6 +524,21 @@ pub fn doubled(image: &Frame) -> Frame {
 /// them, a line inside the render (a wall's edge) only the part it spans.
 const FRAME_EDGE: f64 = 0.6;
 
+/// The first of `lines` (going out from the walls) whose `share` makes it a
+/// frame's edge, or one of the next two out if it is stronger: a JPEG smears the
+/// frame's colour a row or two into the render, which makes a weaker line of its
+/// own just inside the frame's.
+fn first_strong(mut lines: impl Iterator<Item = u32>, share: impl Fn(u32) -> f64) -> Option<u32> {
+    let at = lines.find(|&v| share(v) >= FRAME_EDGE)?;
+    let mut best = (share(at), at);
+    for v in lines.take(2) {
+        if share(v) > best.0 {
+            best = (share(v), v);
+        }
+    }
+    Some(best.1)
+}
+
 /// The render inside `shot` whatever the camera, found by its frame: the box's
 /// coloured walls lie inside the render, and each side of the render is either
 /// the screenshot's own edge or the nearest line beyond the walls across which
@@ -514,14 +579,10 @@ pub fn locate_by_frame(shot: &Frame) -> Option<Located> {
         share(&mut along.map(|y| (shot.rgb(inside, y), shot.rgb(outside, y))))
     };
     let strong = |s: f64| s >= FRAME_EDGE;
-    let top = (0..=by0)
-        .rev()
-        .find(|&y| strong(row_line(y, bx0..bx1 + 1, true)))?;
-    let bottom = (by1 + 1..=h).find(|&y| strong(row_line(y, bx0..bx1 + 1, false)))?;
-    let left = (0..=bx0)
-        .rev()
-        .find(|&x| strong(column_line(x, top..bottom, true)))?;
-    let right = (bx1 + 1..=w).find(|&x| strong(column_line(x, top..bottom, false)))?;
+    let top = first_strong((0..=by0).rev(), |y| row_line(y, bx0..bx1 + 1, true))?;
+    let bottom = first_strong(by1 + 1..=h, |y| row_line(y, bx0..bx1 + 1, false))?;
+    let left = first_strong((0..=bx0).rev(), |x| column_line(x, top..bottom, true))?;
+    let right = first_strong(bx1 + 1..=w, |x| column_line(x, top..bottom, false))?;
     // Each side must be an edge along the render's whole width or height, not
     // only beside the walls.
     let framed = strong(row_line(top, left..right, true))
