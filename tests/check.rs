@@ -2251,3 +2251,57 @@ fn a_macos_window_screenshot_is_found() {
         }
     }
 }
+
+/// A render with a few rows or columns cut off (a screenshot trimmed by hand)
+/// is checked in its place in the handout's 500 x 500 render, and the report
+/// says what was lost; a render drawn at another size is no cut.
+#[test]
+fn a_render_cut_by_hand_is_checked_in_its_place() {
+    use rasterlab::app::check::{check_image_file, CheckOptions};
+    use rasterlab::app::{self as app, image_io::write_image, Settings};
+    use rasterlab::{Figure, StageName};
+    let dir = temp_dir("check-cut");
+    let cut = |frame: &Frame, [x, y, w, h]: [u32; 4]| {
+        let mut out = Frame::new(w, h);
+        for v in 0..h {
+            for u in 0..w {
+                out.color[(v * w + u) as usize] =
+                    frame.color[((y + v) * frame.width + x + u) as usize];
+            }
+        }
+        out
+    };
+    let cases = [
+        (StageName::Depth, [7, 3, 463, 495], 5, "the image is the 463x495 part at (7, 3) of a 500x500 render, cut out of it (lost: 3 pixels above, 2 pixels below, 7 pixels left of, 30 pixels right of); it was checked in its place in the render, whose other pixels were taken from the handout's figure it matches"),
+        (StageName::VertexLight, [0, 0, 488, 500], 6, "the image is the 488x500 part at (0, 0) of a 500x500 render, cut out of it (lost: 12 pixels right of); it was checked in its place in the render, whose other pixels were taken from the handout's figure it matches"),
+        (StageName::PixelLight, [0, 3, 500, 494], 7, "the image is the 500x494 part at (0, 3) of a 500x500 render, cut out of it (lost: 3 pixels above, 3 pixels below); it was checked in its place in the render, whose other pixels were taken from the handout's figure it matches"),
+    ];
+    for (stage, part, figure, note) in cases {
+        let path = dir.join("cut.png");
+        write_image(&cut(&handout_render(stage), part), &path).unwrap();
+        let (check, _) = check_image_file(&path, &CheckOptions::default()).unwrap();
+        assert_plain_figure(&check, figure, None, note);
+        assert_eq!(check.notes, [note]);
+        assert!(check.is_handouts_figure(None), "{}", check.text("cut"));
+    }
+    // Drawn at 480 x 480 with f = 480: the same picture scaled, not cut.
+    let own = Settings {
+        camera: rasterlab::Camera {
+            focal: 480.0,
+            ..rasterlab::Camera::handout(480, 480)
+        },
+        ..Settings::default()
+    };
+    let (frame, _) = app::render(
+        Figure::of(StageName::PixelLight),
+        &cornell_box(),
+        &own,
+        None,
+    );
+    let path = dir.join("own.png");
+    write_image(&frame, &path).unwrap();
+    let (check, _) = check_image_file(&path, &CheckOptions::default()).unwrap();
+    assert_plain_figure(&check, 7, None, "480");
+    assert!(check.notes.is_empty(), "{:?}", check.notes);
+    assert!(check.is_handouts_figure(None));
+}

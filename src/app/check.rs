@@ -6,7 +6,7 @@ use crate::app::progress::Progress;
 use crate::measure::check::check_image;
 use crate::measure::check::image::{ImageCheck, Setup};
 use crate::measure::check::locate::{
-    blended_edges, doubled, locate, locate_by_frame, pixel_doubled, shrunk,
+    blended_edges, cut_from_render, doubled, locate, locate_by_frame, pixel_doubled, shrunk,
 };
 use crate::measure::check::pose::{fit_pose, walls_in_place, MIN_POSE_SCORE};
 use crate::measure::check::rows::{check_rows, parse_rows_skipping, RowsCheck};
@@ -209,8 +209,17 @@ fn check_image_named(
     // A window screenshot: the render inside it, unless the command line fixes
     // the size or the camera (then the image is taken as it is).
     let fixed = options.size.is_some() || options.focal.is_some() || options.camera.is_some();
+    // A render with a few rows or columns cut off: checked in its place in
+    // the handout's 500 x 500 render.
+    let cut = match fixed || lossy {
+        true => None,
+        false => cut_from_render(&observed),
+    };
+    if let Some(c) = &cut {
+        observed = c.frame.clone();
+    }
     let mut located = None;
-    if !fixed && observed.width != observed.height {
+    if !fixed && cut.is_none() && observed.width != observed.height {
         // The handout's figures first; a camera moved elsewhere leaves the
         // window's frame to find the render by.
         located = locate(&observed, lossy).or_else(|| locate_by_frame(&observed));
@@ -220,7 +229,7 @@ fn check_image_named(
     }
     // Shown at twice its size pixel for pixel (a HiDPI screen): checked at the
     // size it was drawn.
-    let halved = match fixed {
+    let halved = match fixed || cut.is_some() {
         true => None,
         false => pixel_doubled(&observed),
     };
@@ -229,7 +238,7 @@ fn check_image_named(
         observed = h;
     }
     // A screenshot shrunk to half: checked at the size it was drawn.
-    let blended = !fixed && !lossy && shrunk(&observed);
+    let blended = !fixed && !lossy && cut.is_none() && shrunk(&observed);
     if blended {
         observed = doubled(&observed);
     }
@@ -399,7 +408,7 @@ fn check_image_named(
     }
     // A frame found around something that is no lab image (a photo's edges)
     // held no render: the image is checked whole, as it was given.
-    if located.is_some() && check.fitted.is_none() {
+    if (located.is_some() || cut.is_some()) && check.fitted.is_none() {
         let as_given = CheckOptions {
             size: Some(whole),
             ..options.clone()
@@ -435,6 +444,9 @@ fn check_image_named(
         check.notes.insert(0, "the image is a JPEG, whose compression blurs every edge and moves colours by a few levels: it was checked as it is, its pixels not held to 2/255, and no variant was looked for on its edges or in half a level (truncated colours); save the screenshot as PNG to check it to the pixel".to_string());
     } else if resized {
         check.notes.insert(0, "the colours either side of the image's edges are blended, which no rasterizer without anti-aliasing draws: it was resized (to a size other than half) or drawn anti-aliased; it was checked as it is, and no variant was looked for on its edges".to_string());
+    }
+    if let Some(c) = cut {
+        check.notes.insert(0, c.note);
     }
     if let Some(l) = located {
         check.notes.insert(0, l.note);

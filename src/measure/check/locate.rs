@@ -629,3 +629,93 @@ fn left_out(around: [u32; 4], scale: u32) -> String {
     };
     format!("{} ({what})", parts.join(", "))
 }
+
+/// A render cut out of: the handout's size, 500 x 500.
+const CUT_FROM: u32 = 500;
+
+/// The shortest side of a part of a render [`cut_from_render`] looks for: a
+/// hand-made crop loses a few rows or columns, not half the render.
+const MIN_CUT_SIDE: u32 = 400;
+
+/// The share of samples a part of a render must match within 16/255: a render
+/// of another size, scaled rather than cut, misplaces its edges by pixels all
+/// round and misses it.
+const MIN_CUT_SCORE: f64 = 0.99;
+
+/// A render cut out of a larger one (a screenshot trimmed by hand, a few rows
+/// or columns lost): the `shot` is smaller than the handout's 500 x 500 along
+/// some side, at least [`MIN_CUT_SIDE`] along each, and matches one of its
+/// figures at 500 x 500 at some offset (samples within 16/255, then every pixel
+/// within a pixel of the best place). Returns that figure with the shot pasted
+/// in at the offset, the offset, and the note.
+pub fn cut_from_render(shot: &Frame) -> Option<Located> {
+    let (w, h) = (shot.width, shot.height);
+    if w > CUT_FROM || h > CUT_FROM || (w, h) == (CUT_FROM, CUT_FROM) || w.min(h) < MIN_CUT_SIDE {
+        return None;
+    }
+    let figures = figures_at(CUT_FROM);
+    let points: Vec<(u32, u32)> = (0..SAMPLES)
+        .flat_map(|j| (0..SAMPLES).map(move |i| (i, j)))
+        .map(|(i, j)| {
+            (
+                (2 * i + 1) * w / (2 * SAMPLES),
+                (2 * j + 1) * h / (2 * SAMPLES),
+            )
+        })
+        .collect();
+    // (share of samples, figure, x, y)
+    let mut best = (0.0, 0, 0, 0);
+    for (k, f) in figures.iter().enumerate() {
+        for y in 0..=CUT_FROM - h {
+            for x in 0..=CUT_FROM - w {
+                let near = points
+                    .iter()
+                    .filter(|&&(u, v)| close(shot.rgb(u, v), f.rgb(x + u, y + v)))
+                    .count();
+                let share = near as f64 / points.len() as f64;
+                if share > best.0 {
+                    best = (share, k, x, y);
+                }
+            }
+        }
+    }
+    let (share, k, x0, y0) = best;
+    if share < MIN_CUT_SCORE {
+        return None;
+    }
+    // Every pixel decides among the places a pixel around the samples' best.
+    let figure = &figures[k];
+    let near_at = |x: u32, y: u32| {
+        (0..h)
+            .flat_map(|v| (0..w).map(move |u| (u, v)))
+            .filter(|&(u, v)| close(shot.rgb(u, v), figure.rgb(x + u, y + v)))
+            .count()
+    };
+    let mut place = (near_at(x0, y0), x0, y0);
+    for y in y0.saturating_sub(1)..=(y0 + 1).min(CUT_FROM - h) {
+        for x in x0.saturating_sub(1)..=(x0 + 1).min(CUT_FROM - w) {
+            let near = near_at(x, y);
+            if near > place.0 {
+                place = (near, x, y);
+            }
+        }
+    }
+    let (_, x, y) = place;
+    let mut whole = figure.clone();
+    for v in 0..h {
+        for u in 0..w {
+            whole.color[((y + v) * CUT_FROM + x + u) as usize] = shot.color[(v * w + u) as usize];
+        }
+    }
+    let lost = left_out([y, CUT_FROM - h - y, x, CUT_FROM - w - x], 1);
+    // Only the counts: what a window's frame would be does not apply.
+    let lost = lost.split(" (").next().unwrap_or_default();
+    let note = format!(
+        "the image is the {w}x{h} part at ({x}, {y}) of a {CUT_FROM}x{CUT_FROM} render, cut out of it (lost: {lost}); it was checked in its place in the render, whose other pixels were taken from the handout's figure it matches"
+    );
+    Some(Located {
+        frame: whole,
+        note,
+        crop: [x, y, w, h],
+    })
+}
