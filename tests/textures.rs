@@ -185,6 +185,46 @@ fn a_models_map_kd_is_its_texture() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// Public models ship JPEG textures: map_Kd naming one is read like a PNG.
+/// A 64 x 64 JPEG of the same four tiles, whose flat middles a JPEG keeps
+/// within a few levels.
+#[test]
+fn a_models_jpeg_map_kd_is_read() {
+    let dir = temp_dir("map-kd-jpeg");
+    let obj = write_textured_square(&dir, Some("tiles.jpg"));
+    let tiles = image::open(dir.join("tiles.png")).unwrap().to_rgb8();
+    let big = image::imageops::resize(&tiles, 64, 64, image::imageops::FilterType::Nearest);
+    big.save(dir.join("tiles.jpg")).unwrap();
+    let (mesh, maps, _) = read_obj(&obj).unwrap();
+    assert_eq!(maps.images.len(), 1);
+    let scene = Scene {
+        name: "square".into(),
+        mesh,
+        maps,
+        is_box: false,
+        pitch: 0.0,
+        warnings: Vec::new(),
+    };
+    let s = Settings {
+        light: only_indirect(),
+        ..Settings::default()
+    };
+    let frame = render(Figure::of(StageName::PixelLight), &scene, &s);
+    let rgb = |c: u32| [(c >> 16) & 255, (c >> 8) & 255, c & 255];
+    let near = |x: usize, y: usize, want: [u32; 3]| {
+        let got = rgb(frame.color[y * 500 + x]);
+        assert!(
+            (0..3).all(|k| got[k].abs_diff(want[k]) <= 8),
+            "({x}, {y}): {got:?} against {want:?}"
+        );
+    };
+    near(150, 150, [255, 0, 0]);
+    near(350, 150, [0, 255, 0]);
+    near(150, 350, [0, 0, 255]);
+    near(350, 350, [255, 255, 255]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 #[test]
 fn a_map_kd_pointing_nowhere_is_a_one_line_error_naming_the_file() {
     let dir = temp_dir("map-kd-missing");
