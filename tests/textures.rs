@@ -225,6 +225,41 @@ fn a_models_jpeg_map_kd_is_read() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// A model made on another machine names its textures as that machine had
+/// them: a Windows path, an absolute one from the author's disk, another case.
+/// Each is found beside the model, with a warning that says where.
+#[test]
+fn a_map_kd_written_on_another_machine_is_found_beside_the_model() {
+    let dir = temp_dir("map-kd-elsewhere");
+    let obj = write_textured_square(&dir, None);
+    std::fs::create_dir_all(dir.join("Textures")).unwrap();
+    std::fs::rename(dir.join("tiles.png"), dir.join("Textures/Tiles.png")).unwrap();
+    for written in [
+        r"Textures\Tiles.png",
+        r"C:\Users\ann\Desktop\box\Textures\Tiles.png",
+        "textures/tiles.PNG",
+    ] {
+        std::fs::write(
+            dir.join("square.mtl"),
+            format!("newmtl tiles\nKd 0.5 0.5 0.5\nmap_Kd {written}\n"),
+        )
+        .unwrap();
+        let (_, maps, warnings) = read_obj(&obj).unwrap();
+        assert_eq!(maps.images.len(), 1, "{written}");
+        let found = dir.join("Textures").join("Tiles.png");
+        assert_eq!(
+            warnings,
+            [format!(
+                "{}: material tiles: map_Kd {written} is not there: read {} instead",
+                obj.display(),
+                found.display()
+            )],
+            "{written}"
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 #[test]
 fn a_map_kd_pointing_nowhere_is_a_one_line_error_naming_the_file() {
     let dir = temp_dir("map-kd-missing");

@@ -36,7 +36,7 @@ use std::cell::RefCell;
 use std::collections::HashMap;
 use std::fmt::Write as _;
 use std::io::{self, BufRead, BufReader, Read};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// The largest model loaded; a larger one is refused before tobj stores it.
 pub const MAX_TRIANGLES: usize = 10_000_000;
@@ -107,8 +107,9 @@ pub fn read_obj(path: &Path) -> Result<(Mesh, Maps, Vec<String>), String> {
         .map(|m| m.diffuse_texture.as_deref().map(TextureMap::parse))
         .collect();
     let mesh = to_mesh(&models, &materials, &maps).map_err(fail)?;
-    let images = load_diffuse_textures(&materials, &maps, dir).map_err(fail)?;
+    let (images, found_elsewhere) = load_diffuse_textures(&materials, &maps, dir).map_err(fail)?;
     let mut warnings = reader.warnings(&materials);
+    warnings.extend(found_elsewhere);
     for (m, map) in materials.iter().zip(&maps) {
         if let Some(kd) = m.diffuse {
             if kd.iter().any(|c| !(0.0..=1.0).contains(c)) {
@@ -188,12 +189,14 @@ impl TextureMap {
 }
 
 /// Each material's `map_Kd` image, read relative to the OBJ file's folder, as
-/// that material's texture (shared by the materials that name the same file).
+/// that material's texture (shared by the materials that name the same file),
+/// and a warning for each one found elsewhere than it says ([`texture_file`]).
 fn load_diffuse_textures(
     materials: &[tobj::Material],
     maps: &[Option<TextureMap>],
     dir: &Path,
-) -> Result<Maps, String> {
+) -> Result<(Maps, Vec<String>), String> {
+    let mut warnings = Vec::new();
     let mut images = Maps::default();
     let mut loaded: HashMap<&str, u32> = HashMap::new();
     for (i, (m, map)) in materials.iter().zip(maps).enumerate() {
@@ -207,7 +210,18 @@ fn load_diffuse_textures(
         let index = match loaded.get(name) {
             Some(&index) => index,
             None => {
-                let texture = super::texture::load_texture(&dir.join(name))
+                let path = match texture_file(dir, name) {
+                    Some(found) if found != dir.join(name) => {
+                        warnings.push(format!(
+                            "material {}: map_Kd {name} is not there: read {} instead",
+                            m.name,
+                            found.display()
+                        ));
+                        found
+                    }
+                    _ => dir.join(name),
+                };
+                let texture = super::texture::load_texture(&path)
                     .map_err(|e| format!("material {}: map_Kd: {e}", m.name))?;
                 let index = images.push(texture);
                 loaded.insert(name, index);
@@ -216,8 +230,51 @@ fn load_diffuse_textures(
         };
         images.of_mut(i).texture = Some(index);
     }
-    Ok(images)
+    Ok((images, warnings))
 }
+
+/// Where the image a `map_Kd` names is, as models made on another machine name
+/// it: the path as written if it is a file; else with `\` read as `/` (a
+/// Windows path); else the longest tail of it found below `dir` (an absolute
+/// path from the author's disk, `C:\Users\...\textures\wood.jpg`, is
+/// `textures/wood.jpg` or `wood.jpg` beside the model); each tail also matched
+/// without regard to case (`Wood.JPG` for `wood.jpg`). `None` when none is there.
+fn texture_file(dir: &Path, name: &str) -> Option<PathBuf> {
+    let as_written = dir.join(name);
+    if as_written.is_file() {
+        return Some(as_written);
+    }
+    let parts: Vec<&str> = name
+        .split(['/', '\\'])
+        .filter(|p| !p.is_empty() && !p.ends_with(':'))
+        .collect();
+    (0..parts.len()).find_map(|first| {
+        let tail = &parts[first..];
+        let exact = tail.iter().fold(dir.to_path_buf(), |p, part| p.join(part));
+        if exact.is_file() {
+            return Some(exact);
+        }
+        // Each part matched without regard to case, in the folders as they are.
+        tail.iter()
+            .try_fold(dir.to_path_buf(), |at, part| {
+                // A model named without a folder is in the current one.
+                let folder = match at.as_os_str().is_empty() {
+                    true => Path::new("."),
+                    false => at.as_path(),
+                };
+                std::fs::read_dir(folder)
+                    .ok()?
+                    .take(MAX_FOLDER_ENTRIES)
+                    .flatten()
+                    .find(|e| e.file_name().to_string_lossy().eq_ignore_ascii_case(part))
+                    .map(|e| at.join(e.file_name()))
+            })
+            .filter(|p| p.is_file())
+    })
+}
+
+/// How many entries of a folder [`texture_file`] looks through for a name.
+const MAX_FOLDER_ENTRIES: usize = 10_000;
 
 /// Reads one MTL file; the error names it and, where known, the line.
 fn load_mtl(path: &Path) -> Result<(Vec<tobj::Material>, HashMap<String, usize>), String> {
