@@ -181,26 +181,23 @@ fn bad_files_are_one_line_errors() {
     // Material libraries: missing, or broken in a way tobj reports or panics on.
     let uses = |mtl: &str| format!("mtllib {mtl}\n{tri}usemtl a\nf 1 2 3\n");
     for (name, mtl, expected) in [
-        ("absent", None, "cannot open"),
         (
             "short",
-            Some("newmtl a\nKd 0.5 0.5\n"),
+            "newmtl a\nKd 0.5 0.5\n",
             "line 2: Kd needs three numbers",
         ),
         (
             "word",
-            Some("newmtl a\nKd 0.5 red 0.5\n"),
+            "newmtl a\nKd 0.5 red 0.5\n",
             "line 2: material parse error",
         ),
         (
             "nan",
-            Some("newmtl a\nKd 0.5 NaN 0.5\n"),
+            "newmtl a\nKd 0.5 NaN 0.5\n",
             "line 2: a number is NaN",
         ),
     ] {
-        if let Some(text) = mtl {
-            dir.file(&format!("{name}.mtl"), text);
-        }
+        dir.file(&format!("{name}.mtl"), mtl);
         let path = dir.file(&format!("{name}.obj"), uses(&format!("{name}.mtl")));
         let err = load_obj(&path).unwrap_err();
         let library = format!(
@@ -210,6 +207,32 @@ fn bad_files_are_one_line_errors() {
         assert!(err.contains(&library), "{name}: {err}");
         assert!(err.contains(expected), "{name}: {err}");
     }
+    // A library that is not there (a model shared without it): its faces grey,
+    // with warnings that say so; one in another case is read, with a warning.
+    let path = dir.file("absent.obj", uses("absent.mtl"));
+    let (mesh, _, warnings) = rasterlab::scene::obj::read_obj(&path).unwrap();
+    assert_eq!(mesh.faces.len(), 1);
+    assert_eq!(mesh.material(&mesh.faces[0]).color, Vec3::splat(0.75));
+    let shown = path.display();
+    assert_eq!(
+        warnings,
+        [
+            format!("{shown}: material library absent.mtl is not there: its materials are left out"),
+            format!("{shown}: line 5: usemtl a: no material of that name in the material libraries: its faces are grey"),
+        ]
+    );
+    dir.file("Cased.MTL", "newmtl a\nKd 1 0 0\n");
+    let path = dir.file("cased.obj", uses("cased.mtl"));
+    let (mesh, _, warnings) = rasterlab::scene::obj::read_obj(&path).unwrap();
+    assert_eq!(mesh.material(&mesh.faces[0]).color, Vec3::X);
+    assert_eq!(
+        warnings,
+        [format!(
+            "{}: material library cased.mtl is not there: read {} instead",
+            path.display(),
+            dir.0.join("Cased.MTL").display()
+        )]
+    );
 }
 
 #[test]

@@ -69,6 +69,7 @@ pub fn read_obj(path: &Path) -> Result<(Mesh, Maps, Vec<String>), String> {
     let mut reader = Lines::new(BufReader::new(file), Kind::Obj);
     let dir = path.parent().unwrap_or(Path::new(""));
     let mtl_error = RefCell::new(None);
+    let mtl_warnings = RefCell::new(Vec::new());
     let options = tobj::LoadOptions {
         triangulate: true,
         single_index: true,
@@ -76,7 +77,23 @@ pub fn read_obj(path: &Path) -> Result<(Mesh, Maps, Vec<String>), String> {
         ignore_lines: true,
     };
     let loaded = tobj::load_obj_buf(&mut reader, &options, |name| {
-        load_mtl(&dir.join(name)).map_err(|why| {
+        let name = name.to_string_lossy();
+        // A library that is not there leaves its materials undefined: their
+        // faces are drawn grey, as the usemtl warnings say (models are often
+        // shared without theirs).
+        let Some(found) = file_beside(dir, &name) else {
+            mtl_warnings.borrow_mut().push(format!(
+                "material library {name} is not there: its materials are left out"
+            ));
+            return Ok((Vec::new(), HashMap::new()));
+        };
+        if found != dir.join(&*name) {
+            mtl_warnings.borrow_mut().push(format!(
+                "material library {name} is not there: read {} instead",
+                found.display()
+            ));
+        }
+        load_mtl(&found).map_err(|why| {
             mtl_error.borrow_mut().get_or_insert(why);
             tobj::LoadError::GenericFailure
         })
@@ -108,7 +125,8 @@ pub fn read_obj(path: &Path) -> Result<(Mesh, Maps, Vec<String>), String> {
         .collect();
     let mesh = to_mesh(&models, &materials, &maps).map_err(fail)?;
     let (images, found_elsewhere) = load_diffuse_textures(&materials, &maps, dir).map_err(fail)?;
-    let mut warnings = reader.warnings(&materials);
+    let mut warnings = mtl_warnings.into_inner();
+    warnings.extend(reader.warnings(&materials));
     warnings.extend(found_elsewhere);
     for (m, map) in materials.iter().zip(&maps) {
         if let Some(kd) = m.diffuse {
@@ -190,7 +208,7 @@ impl TextureMap {
 
 /// Each material's `map_Kd` image, read relative to the OBJ file's folder, as
 /// that material's texture (shared by the materials that name the same file),
-/// and a warning for each one found elsewhere than it says ([`texture_file`]).
+/// and a warning for each one found elsewhere than it says ([`file_beside`]).
 fn load_diffuse_textures(
     materials: &[tobj::Material],
     maps: &[Option<TextureMap>],
@@ -210,7 +228,7 @@ fn load_diffuse_textures(
         let index = match loaded.get(name) {
             Some(&index) => index,
             None => {
-                let path = match texture_file(dir, name) {
+                let path = match file_beside(dir, name) {
                     Some(found) if found != dir.join(name) => {
                         warnings.push(format!(
                             "material {}: map_Kd {name} is not there: read {} instead",
@@ -233,15 +251,16 @@ fn load_diffuse_textures(
     Ok((images, warnings))
 }
 
-/// Where the image a `map_Kd` names is, as models made on another machine name
-/// it: the path as written if it is a file; else with `\` read as `/` (a
+/// Where the file an `mtllib` or a `map_Kd` names is, as models made on another
+/// machine name it: the path as written if something is there; else with `\` read as `/` (a
 /// Windows path); else the longest tail of it found below `dir` (an absolute
 /// path from the author's disk, `C:\Users\...\textures\wood.jpg`, is
 /// `textures/wood.jpg` or `wood.jpg` beside the model); each tail also matched
 /// without regard to case (`Wood.JPG` for `wood.jpg`). `None` when none is there.
-fn texture_file(dir: &Path, name: &str) -> Option<PathBuf> {
+fn file_beside(dir: &Path, name: &str) -> Option<PathBuf> {
+    // Whatever is there as written is read (or refused, a FIFO say) as it is.
     let as_written = dir.join(name);
-    if as_written.is_file() {
+    if as_written.exists() {
         return Some(as_written);
     }
     let parts: Vec<&str> = name
@@ -273,7 +292,7 @@ fn texture_file(dir: &Path, name: &str) -> Option<PathBuf> {
     })
 }
 
-/// How many entries of a folder [`texture_file`] looks through for a name.
+/// How many entries of a folder [`file_beside`] looks through for a name.
 const MAX_FOLDER_ENTRIES: usize = 10_000;
 
 /// Reads one MTL file; the error names it and, where known, the line.
