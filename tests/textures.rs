@@ -261,26 +261,43 @@ fn a_map_kd_written_on_another_machine_is_found_beside_the_model() {
 }
 
 #[test]
-fn a_map_kd_pointing_nowhere_is_a_one_line_error_naming_the_file() {
+fn a_map_kd_pointing_nowhere_is_drawn_in_its_kd_with_a_warning() {
     let dir = temp_dir("map-kd-missing");
     let obj = write_textured_square(&dir, Some("missing.png"));
-    let e = load_obj(&obj).unwrap_err();
-    assert!(e.contains("square.obj"), "{e}");
-    assert!(e.contains("map_Kd"), "{e}");
-    assert!(e.contains("missing.png"), "{e}");
-    assert!(!e.contains('\n'));
-    // From the command line: a failure (exit code 1) and no image written.
+    let (_, maps, warnings) = read_obj(&obj).unwrap();
+    assert!(maps.images.is_empty());
+    let warning = format!(
+        "{}: material tiles: map_Kd missing.png is not there: its Kd is drawn instead",
+        obj.display()
+    );
+    assert_eq!(warnings, std::slice::from_ref(&warning));
+    // From the command line: the warning, and the image in Kd's grey.
     let out = dir.join("out.png");
     let o = Command::new(env!("CARGO_BIN_EXE_rasterlab"))
-        .args(["pixel-light", "--scene"])
+        .args([
+            "pixel-light",
+            "--indirect",
+            "1",
+            "--light-power",
+            "0",
+            "--scene",
+        ])
         .arg(&obj)
         .arg("-o")
         .arg(&out)
         .output()
         .unwrap();
-    assert_eq!(o.status.code(), Some(1));
-    assert_eq!(String::from_utf8_lossy(&o.stderr).lines().count(), 1);
-    assert!(!out.exists());
+    assert_eq!(o.status.code(), Some(0));
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(stderr.contains(&format!("warning: {warning}")), "{stderr}");
+    let image = image::open(&out).unwrap().to_rgb8();
+    assert_eq!(image.get_pixel(250, 250).0, [128, 128, 128]);
+    // A map_Kd that is there but no image is still refused, on one line.
+    let obj = write_textured_square(&dir, Some("broken.png"));
+    std::fs::write(dir.join("broken.png"), "not an image").unwrap();
+    let e = load_obj(&obj).unwrap_err();
+    assert!(e.contains("map_Kd") && e.contains("broken.png"), "{e}");
+    assert!(!e.contains('\n'));
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

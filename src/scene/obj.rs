@@ -237,7 +237,15 @@ fn load_diffuse_textures(
                         ));
                         found
                     }
-                    _ => dir.join(name),
+                    Some(found) => found,
+                    // A model shared without its textures still draws.
+                    None => {
+                        warnings.push(format!(
+                            "material {}: map_Kd {name} is not there: its Kd is drawn instead",
+                            m.name
+                        ));
+                        continue;
+                    }
                 };
                 let texture = super::texture::load_texture(&path)
                     .map_err(|e| format!("material {}: map_Kd: {e}", m.name))?;
