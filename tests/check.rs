@@ -1203,9 +1203,12 @@ fn halved(frame: &Frame) -> Frame {
 
 /// The handout's figure of `stage`, drawn as `rasterlab STAGE` draws it.
 fn handout_render(stage: rasterlab::StageName) -> Frame {
-    let settings = rasterlab::app::Settings::default();
-    let figure = rasterlab::Figure::of(stage);
-    rasterlab::app::render(figure, &cornell_box(), &settings, None).0
+    render_with(stage, &rasterlab::app::Settings::default())
+}
+
+/// The box's `stage` drawn with `settings`.
+fn render_with(stage: rasterlab::StageName, settings: &rasterlab::app::Settings) -> Frame {
+    rasterlab::app::render(rasterlab::Figure::of(stage), &cornell_box(), settings, None).0
 }
 
 /// `frame` resized to `width` x `height` as image viewers do (bilinear).
@@ -2104,13 +2107,7 @@ fn a_jpeg_screenshot_is_checked_as_far_as_it_shows() {
         },
         ..rasterlab::app::Settings::default()
     };
-    let frame = rasterlab::app::render(
-        rasterlab::Figure::of(StageName::PixelLight),
-        &cornell_box(),
-        &moved,
-        None,
-    )
-    .0;
+    let frame = render_with(StageName::PixelLight, &moved);
     let path = dir.join("moved-light.jpg");
     as_jpeg(&frame, 85, &path);
     let fit = CheckOptions {
@@ -2215,8 +2212,8 @@ fn mac_window(frame: &Frame, pad: u32) -> image::RgbaImage {
 #[test]
 fn a_macos_window_screenshot_is_found() {
     use rasterlab::app::check::{check_image_file, CheckOptions};
-    use rasterlab::app::{self as app, Settings};
-    use rasterlab::{Figure, StageName};
+    use rasterlab::app::Settings;
+    use rasterlab::StageName;
     let dir = temp_dir("check-macos");
     let lit = handout_render(StageName::PixelLight);
     let walked = Settings {
@@ -2228,7 +2225,7 @@ fn a_macos_window_screenshot_is_found() {
         },
         ..Settings::default()
     };
-    let (moved, _) = app::render(Figure::of(StageName::Depth), &cornell_box(), &walked, None);
+    let moved = render_with(StageName::Depth, &walked);
     for (name, frame, figure) in [("lit.png", &lit, 7), ("walked.png", &moved, 5)] {
         let path = dir.join(name);
         mac_window(frame, 40).save(&path).unwrap();
@@ -2258,8 +2255,8 @@ fn a_macos_window_screenshot_is_found() {
 #[test]
 fn a_render_cut_by_hand_is_checked_in_its_place() {
     use rasterlab::app::check::{check_image_file, CheckOptions};
-    use rasterlab::app::{self as app, image_io::write_image, Settings};
-    use rasterlab::{Figure, StageName};
+    use rasterlab::app::{image_io::write_image, Settings};
+    use rasterlab::StageName;
     let dir = temp_dir("check-cut");
     let cut = |frame: &Frame, [x, y, w, h]: [u32; 4]| {
         let mut out = Frame::new(w, h);
@@ -2292,14 +2289,8 @@ fn a_render_cut_by_hand_is_checked_in_its_place() {
         },
         ..Settings::default()
     };
-    let (frame, _) = app::render(
-        Figure::of(StageName::PixelLight),
-        &cornell_box(),
-        &own,
-        None,
-    );
     let path = dir.join("own.png");
-    write_image(&frame, &path).unwrap();
+    write_image(&render_with(StageName::PixelLight, &own), &path).unwrap();
     let (check, _) = check_image_file(&path, &CheckOptions::default()).unwrap();
     assert_plain_figure(&check, 7, None, "480");
     assert!(check.notes.is_empty(), "{:?}", check.notes);

@@ -148,23 +148,33 @@ fn write_textured_square(dir: &Path, texture: Option<&str>) -> PathBuf {
     dir.join("square.obj")
 }
 
-#[test]
-fn a_models_map_kd_is_its_texture() {
-    let dir = temp_dir("map-kd");
-    let (mesh, maps, _) = read_obj(&write_textured_square(&dir, Some("tiles.png"))).unwrap();
+/// The square of `obj`, with the one texture its map_Kd names.
+fn textured_square(obj: &Path) -> Scene {
+    let (mesh, maps, _) = read_obj(obj).unwrap();
     assert_eq!(maps.images.len(), 1);
-    let mut scene = Scene {
+    Scene {
         name: "square".into(),
         mesh,
         maps,
         is_box: false,
         pitch: 0.0,
         warnings: Vec::new(),
-    };
-    let s = Settings {
+    }
+}
+
+/// The handout's view lit by the indirect light alone: a texel's colour as it is.
+fn texels_as_they_are() -> Settings {
+    Settings {
         light: only_indirect(),
         ..Settings::default()
-    };
+    }
+}
+
+#[test]
+fn a_models_map_kd_is_its_texture() {
+    let dir = temp_dir("map-kd");
+    let mut scene = textured_square(&write_textured_square(&dir, Some("tiles.png")));
+    let s = texels_as_they_are();
     let frame = render(Figure::of(StageName::PixelLight), &scene, &s);
     // The square spans pixels 83 to 416 (f / 3 = 166.7 about the centre).
     let at = |x: usize, y: usize| frame.color[y * 500 + x];
@@ -195,21 +205,11 @@ fn a_models_jpeg_map_kd_is_read() {
     let tiles = image::open(dir.join("tiles.png")).unwrap().to_rgb8();
     let big = image::imageops::resize(&tiles, 64, 64, image::imageops::FilterType::Nearest);
     big.save(dir.join("tiles.jpg")).unwrap();
-    let (mesh, maps, _) = read_obj(&obj).unwrap();
-    assert_eq!(maps.images.len(), 1);
-    let scene = Scene {
-        name: "square".into(),
-        mesh,
-        maps,
-        is_box: false,
-        pitch: 0.0,
-        warnings: Vec::new(),
-    };
-    let s = Settings {
-        light: only_indirect(),
-        ..Settings::default()
-    };
-    let frame = render(Figure::of(StageName::PixelLight), &scene, &s);
+    let frame = render(
+        Figure::of(StageName::PixelLight),
+        &textured_square(&obj),
+        &texels_as_they_are(),
+    );
     let rgb = |c: u32| [(c >> 16) & 255, (c >> 8) & 255, c & 255];
     let near = |x: usize, y: usize, want: [u32; 3]| {
         let got = rgb(frame.color[y * 500 + x]);

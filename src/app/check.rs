@@ -13,7 +13,7 @@ use crate::measure::check::rows::{check_rows, parse_rows_skipping, RowsCheck};
 use crate::measure::heat::heat_map_picture;
 use crate::pipeline::StageName;
 use crate::pipeline::{Camera, Frame};
-use crate::scene::input::{is_jpeg, read_image, read_text_bounded, read_text_file, ImageLimit};
+use crate::scene::input::{read_image_with_format, read_text_bounded, read_text_file, ImageLimit};
 use glam::Vec3;
 use std::path::{Path, PathBuf};
 
@@ -57,12 +57,17 @@ pub struct CheckOptions {
 /// and corners); one larger than [`MAX_CHECK_SIDE`] is refused from its header,
 /// before it is decoded.
 pub fn read_screenshot(path: &Path) -> Result<Frame, String> {
+    read_screenshot_noting_jpeg(path).map(|(frame, _)| frame)
+}
+
+/// [`read_screenshot`], and whether the file is a JPEG.
+fn read_screenshot_noting_jpeg(path: &Path) -> Result<(Frame, bool), String> {
     let limit = ImageLimit {
         max_side: MAX_CHECK_SIDE,
         what: "a screenshot of the lab",
     };
-    let img =
-        read_image(path, limit).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    let (img, format) = read_image_with_format(path, limit)
+        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
     let rgba = img.to_rgba8();
     let mut frame = Frame::new(rgba.width(), rgba.height());
     for (c, p) in frame.color.iter_mut().zip(rgba.pixels()) {
@@ -70,7 +75,7 @@ pub fn read_screenshot(path: &Path) -> Result<Frame, String> {
         let [r, g, b] = [p[0], p[1], p[2]].map(|v| (v as u32 * a + 255 * (255 - a) + 127) / 255);
         *c = r << 16 | g << 8 | b;
     }
-    Ok(frame)
+    Ok((frame, format == Some(image::ImageFormat::Jpeg)))
 }
 
 /// Below this share of the walls' pixels in place from the given camera, the
@@ -201,11 +206,23 @@ fn check_image_named(
     stem: &str,
     options: &CheckOptions,
 ) -> Result<(ImageCheck, Vec<PathBuf>), CheckError> {
-    let mut observed = read_screenshot(path).map_err(CheckError::Run)?;
     // A JPEG's blocks blur every edge and move every colour a little: checked
     // as an image resampled, and its pixels not held to 2/255.
-    let lossy = is_jpeg(path);
-    let whole = (observed.width, observed.height);
+    let (observed, lossy) = read_screenshot_noting_jpeg(path).map_err(CheckError::Run)?;
+    check_screenshot(observed, lossy, path, stem, options)
+}
+
+/// [`check_image_named`] of the screenshot read from `path`.
+fn check_screenshot(
+    mut observed: Frame,
+    lossy: bool,
+    path: &Path,
+    stem: &str,
+    options: &CheckOptions,
+) -> Result<(ImageCheck, Vec<PathBuf>), CheckError> {
+    // The screenshot as given, kept while a part of it (or a render it is part
+    // of) is checked instead.
+    let mut given = None;
     // A window screenshot: the render inside it, unless the command line fixes
     // the size or the camera (then the image is taken as it is).
     let fixed = options.size.is_some() || options.focal.is_some() || options.camera.is_some();
@@ -216,7 +233,7 @@ fn check_image_named(
         false => cut_from_render(&observed),
     };
     if let Some(c) = &cut {
-        observed = c.frame.clone();
+        given = Some(std::mem::replace(&mut observed, c.frame.clone()));
     }
     let mut located = None;
     if !fixed && cut.is_none() && observed.width != observed.height {
@@ -225,7 +242,7 @@ fn check_image_named(
         located = locate(&observed, lossy).or_else(|| locate_by_frame(&observed));
     }
     if let Some(l) = &located {
-        observed = l.frame.clone();
+        given = Some(std::mem::replace(&mut observed, l.frame.clone()));
     }
     // Shown at twice its size pixel for pixel (a HiDPI screen): checked at the
     // size it was drawn.
@@ -408,12 +425,12 @@ fn check_image_named(
     }
     // A frame found around something that is no lab image (a photo's edges)
     // held no render: the image is checked whole, as it was given.
-    if (located.is_some() || cut.is_some()) && check.fitted.is_none() {
+    if let Some(given) = given.filter(|_| check.fitted.is_none()) {
         let as_given = CheckOptions {
-            size: Some(whole),
+            size: Some((given.width, given.height)),
             ..options.clone()
         };
-        return check_image_named(path, stem, &as_given);
+        return check_screenshot(given, lossy, path, stem, &as_given);
     }
     // A lit stage asked for on an image without direct light is contradicted,
     // not forced: P = 0 would call any flat image "Figure 7".

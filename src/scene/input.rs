@@ -69,9 +69,17 @@ pub struct ImageLimit {
     pub what: &'static str,
 }
 
-/// The image at `path` (PNG, BMP or GIF, by its content), refused from its
-/// header when a side is longer than `limit` allows.
+/// The image at `path` (PNG, JPEG, BMP or GIF, by its content), refused from
+/// its header when a side is longer than `limit` allows.
 pub fn read_image(path: &Path, limit: ImageLimit) -> Result<image::DynamicImage, String> {
+    read_image_with_format(path, limit).map(|(image, _)| image)
+}
+
+/// [`read_image`], with the format its content showed.
+pub fn read_image_with_format(
+    path: &Path,
+    limit: ImageLimit,
+) -> Result<(image::DynamicImage, Option<image::ImageFormat>), String> {
     let (w, h) = image_size(path)?;
     if w > limit.max_side || h > limit.max_side {
         return Err(format!(
@@ -89,15 +97,8 @@ pub fn read_image(path: &Path, limit: ImageLimit) -> Result<image::DynamicImage,
         .map_err(|e| format!("cannot read: {e}"))?;
     reader.limits(limits);
     let format = reader.format();
-    reader.decode().map_err(|e| damaged(format, e))
-}
-
-/// Whether the file at `path` is a JPEG, by its first bytes (false when it
-/// cannot be read: reading it says why).
-pub fn is_jpeg(path: &Path) -> bool {
-    let mut start = [0u8; 3];
-    open_regular(path).is_ok_and(|mut f| f.read_exact(&mut start).is_ok())
-        && start == [0xff, 0xd8, 0xff]
+    let image = reader.decode().map_err(|e| damaged(format, e))?;
+    Ok((image, format))
 }
 
 /// An image's width and height, from its header alone.

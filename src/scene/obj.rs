@@ -81,18 +81,13 @@ pub fn read_obj(path: &Path) -> Result<(Mesh, Maps, Vec<String>), String> {
         // A library that is not there leaves its materials undefined: their
         // faces are drawn grey, as the usemtl warnings say (models are often
         // shared without theirs).
-        let Some(found) = file_beside(dir, &name) else {
-            mtl_warnings.borrow_mut().push(format!(
+        let mut warnings = mtl_warnings.borrow_mut();
+        let Some(found) = file_beside(dir, &name, "material library", &mut warnings) else {
+            warnings.push(format!(
                 "material library {name} is not there: its materials are left out"
             ));
             return Ok((Vec::new(), HashMap::new()));
         };
-        if found != dir.join(&*name) {
-            mtl_warnings.borrow_mut().push(format!(
-                "material library {name} is not there: read {} instead",
-                found.display()
-            ));
-        }
         load_mtl(&found).map_err(|why| {
             mtl_error.borrow_mut().get_or_insert(why);
             tobj::LoadError::GenericFailure
@@ -208,7 +203,7 @@ impl TextureMap {
 
 /// Each material's `map_Kd` image, read relative to the OBJ file's folder, as
 /// that material's texture (shared by the materials that name the same file),
-/// and a warning for each one found elsewhere than it says ([`file_beside`]).
+/// and the warnings of [`file_beside`] and for each one not there at all.
 fn load_diffuse_textures(
     materials: &[tobj::Material],
     maps: &[Option<TextureMap>],
@@ -228,24 +223,13 @@ fn load_diffuse_textures(
         let index = match loaded.get(name) {
             Some(&index) => index,
             None => {
-                let path = match file_beside(dir, name) {
-                    Some(found) if found != dir.join(name) => {
-                        warnings.push(format!(
-                            "material {}: map_Kd {name} is not there: read {} instead",
-                            m.name,
-                            found.display()
-                        ));
-                        found
-                    }
-                    Some(found) => found,
-                    // A model shared without its textures still draws.
-                    None => {
-                        warnings.push(format!(
-                            "material {}: map_Kd {name} is not there: its Kd is drawn instead",
-                            m.name
-                        ));
-                        continue;
-                    }
+                let what = format!("material {}: map_Kd", m.name);
+                // A model shared without its textures still draws.
+                let Some(path) = file_beside(dir, name, &what, &mut warnings) else {
+                    warnings.push(format!(
+                        "{what} {name} is not there: its Kd is drawn instead"
+                    ));
+                    continue;
                 };
                 let texture = super::texture::load_texture(&path)
                     .map_err(|e| format!("material {}: map_Kd: {e}", m.name))?;
@@ -265,12 +249,23 @@ fn load_diffuse_textures(
 /// path from the author's disk, `C:\Users\...\textures\wood.jpg`, is
 /// `textures/wood.jpg` or `wood.jpg` beside the model); each tail also matched
 /// without regard to case (`Wood.JPG` for `wood.jpg`). `None` when none is there.
-fn file_beside(dir: &Path, name: &str) -> Option<PathBuf> {
+/// A file found elsewhere than written gets a warning naming it, after `what`.
+fn file_beside(dir: &Path, name: &str, what: &str, warnings: &mut Vec<String>) -> Option<PathBuf> {
     // Whatever is there as written is read (or refused, a FIFO say) as it is.
     let as_written = dir.join(name);
     if as_written.exists() {
         return Some(as_written);
     }
+    let found = elsewhere(dir, name)?;
+    warnings.push(format!(
+        "{what} {name} is not there: read {} instead",
+        found.display()
+    ));
+    Some(found)
+}
+
+/// [`file_beside`] of a file not where it is written.
+fn elsewhere(dir: &Path, name: &str) -> Option<PathBuf> {
     let parts: Vec<&str> = name
         .split(['/', '\\'])
         .filter(|p| !p.is_empty() && !p.ends_with(':'))

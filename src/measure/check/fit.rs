@@ -128,12 +128,7 @@ pub(super) fn best_shading(
     }
     let mut best: Option<(Shading, Errors)> = None;
     // The plainest first: each later one must match clearly more pixels.
-    // A JPEG's compression hides half a level: its colours are taken as rounded.
-    let packings: &[(bool, bool)] = match setup.lossy {
-        true => &[(false, false), (true, false)],
-        false => &[(false, false), (false, true), (true, false), (true, true)],
-    };
-    for &(rho_squared, truncated) in packings {
+    for &(rho_squared, truncated) in packings(setup) {
         let (p, n) = fit_light(
             m,
             observed,
@@ -223,6 +218,16 @@ pub(super) fn quick_fit(h: Hypothesis, observed: &Frame, setup: &Setup, light: V
     )
 }
 
+/// The ways a lit image's colours may be packed, the plainest first, as
+/// (ρ twice, truncated): a JPEG's compression hides half a level, so there its
+/// colours are taken as rounded.
+fn packings(setup: &Setup) -> &'static [(bool, bool)] {
+    match setup.lossy {
+        true => &[(false, false), (true, false)],
+        false => &[(false, false), (false, true), (true, false), (true, true)],
+    }
+}
+
 /// How much more interior RMSE (0 to 255) a plainer light may have on a resampled
 /// image and still be as good: the handout's P = 1.1 and π against P = 1.05 with π
 /// as 3 (the same light to 0.04 %) differ by about 0.02; π as 3 at P = 1.1 against
@@ -244,8 +249,8 @@ fn fitted(
     light: Vec3,
 ) -> Fitted {
     let mut best: Option<(Shading, Errors)> = None;
-    for (rho_squared, truncated) in [(false, false), (false, true), (true, false), (true, true)] {
-        if (!h.lit() && (truncated || rho_squared)) || (setup.lossy && truncated) {
+    for &(rho_squared, truncated) in packings(setup) {
+        if !h.lit() && (truncated || rho_squared) {
             continue;
         }
         // ρ twice only where ρ once leaves the interiors off: this runs for

@@ -67,7 +67,7 @@ pub fn locate(shot: &Frame, lossy: bool) -> Option<Located> {
             if scale == 1 && side > MAX_FULL_SIDE {
                 continue;
             }
-            let points = sample_points(side);
+            let points = sample_points(side, side);
             let at_side = figures.at(side);
             for (x, y) in positions(&image, side, x, y) {
                 let score = score(&image, x, y, &points, at_side);
@@ -81,13 +81,14 @@ pub fn locate(shot: &Frame, lossy: bool) -> Option<Located> {
     let image = if scale == 1 { shot.clone() } else { half(shot) };
     // The samples cannot tell a square one pixel off (a row of the title bar
     // in, a row of the render out); every pixel can.
-    let (mut side, mut x, mut y) = polish(&image, side, x, y, &mut figures, lossy);
     // A JPEG's samples can leave the square a few pixels off (all within
-    // 16/255 of a figure a little larger): polished until it stays, each round
-    // moving it a pixel at most.
-    for _ in 0..MAX_SLIDE {
+    // 16/255 of a figure a little larger): there it is polished until it stays,
+    // each round moving it a pixel at most.
+    let rounds = if lossy { MAX_SLIDE } else { 1 };
+    let (mut side, mut x, mut y) = (side, x, y);
+    for _ in 0..rounds {
         let again = polish(&image, side, x, y, &mut figures, lossy);
-        if !lossy || again == (side, x, y) {
+        if again == (side, x, y) {
             break;
         }
         (side, x, y) = again;
@@ -188,20 +189,20 @@ fn positions(image: &Frame, side: u32, xs: [u32; 2], ys: [u32; 2]) -> Vec<(u32, 
 fn coloured_bounds(image: &Frame) -> Option<[u32; 4]> {
     let classes = Classes::of(&cornell_box());
     let (w, h) = (image.width as usize, image.height as usize);
-    let coloured: Vec<bool> = image.color.iter().map(|&c| classes.coloured(c)).collect();
-    let count = coloured.iter().filter(|&&c| c).count();
+    // Coloured and not yet in a patch.
+    let mut left: Vec<bool> = image.color.iter().map(|&c| classes.coloured(c)).collect();
+    let count = left.iter().filter(|&&c| c).count();
     if count * 100 < image.color.len() {
         return None;
     }
     // Each patch of coloured pixels, found by a flood fill.
-    let mut seen = vec![false; coloured.len()];
     let mut stack = Vec::new();
     let mut b = [u32::MAX, u32::MAX, 0, 0];
-    for start in 0..coloured.len() {
-        if !coloured[start] || seen[start] {
+    for start in 0..left.len() {
+        if !left[start] {
             continue;
         }
-        seen[start] = true;
+        left[start] = false;
         stack.push(start);
         let (mut patch, mut size) = ([u32::MAX, u32::MAX, 0, 0], 0usize);
         while let Some(i) = stack.pop() {
@@ -216,8 +217,8 @@ fn coloured_bounds(image: &Frame) -> Option<[u32; 4]> {
             for v in y.saturating_sub(BRIDGE)..(y + BRIDGE + 1).min(h) {
                 for u in x.saturating_sub(BRIDGE)..(x + BRIDGE + 1).min(w) {
                     let j = v * w + u;
-                    if coloured[j] && !seen[j] {
-                        seen[j] = true;
+                    if left[j] {
+                        left[j] = false;
                         stack.push(j);
                     }
                 }
@@ -320,15 +321,12 @@ fn figures_at(side: u32) -> Vec<Frame> {
     handout_figures(&mesh, &camera)
 }
 
-/// A grid of [`SAMPLES`] x [`SAMPLES`] points of a square of `side`, at the
-/// centres of its cells.
-fn sample_points(side: u32) -> Vec<(u32, u32)> {
+/// A grid of [`SAMPLES`] x [`SAMPLES`] points of a `width` x `height`
+/// rectangle, at the centres of its cells.
+fn sample_points(width: u32, height: u32) -> Vec<(u32, u32)> {
+    let at = |k: u32, side: u32| (2 * k + 1) * side / (2 * SAMPLES);
     (0..SAMPLES)
-        .flat_map(|j| (0..SAMPLES).map(move |i| (i, j)))
-        .map(|(i, j)| {
-            let at = |k: u32| (2 * k + 1) * side / (2 * SAMPLES);
-            (at(i), at(j))
-        })
+        .flat_map(|j| (0..SAMPLES).map(move |i| (at(i, width), at(j, height))))
         .collect()
 }
 
@@ -612,6 +610,18 @@ pub fn locate_by_frame(shot: &Frame) -> Option<Located> {
 /// What was cut from around the render, `[above, below, left, right]` pixels of
 /// the screenshot, in words: "30 pixels above (a window's title bar and borders)".
 fn left_out(around: [u32; 4], scale: u32) -> String {
+    // Borders are a few pixels; anything wider beside or below is a desktop.
+    let [_, below, left, right] = around;
+    let what = match left.max(right).max(below) > 16 * scale {
+        true => "the window's title bar and borders, and the desktop around it",
+        false => "a window's title bar and borders",
+    };
+    format!("{} ({what})", sides(around))
+}
+
+/// How many pixels are `around` a rectangle (above, below, left of, right of),
+/// in words, the sides with none left out.
+fn sides(around: [u32; 4]) -> String {
     let parts: Vec<String> = around
         .iter()
         .zip(["above", "below", "left of", "right of"])
@@ -621,13 +631,7 @@ fn left_out(around: [u32; 4], scale: u32) -> String {
             _ => format!("{n} pixels {what}"),
         })
         .collect();
-    // Borders are a few pixels; anything wider beside or below is a desktop.
-    let [_, below, left, right] = around;
-    let what = match left.max(right).max(below) > 16 * scale {
-        true => "the window's title bar and borders, and the desktop around it",
-        false => "a window's title bar and borders",
-    };
-    format!("{} ({what})", parts.join(", "))
+    parts.join(", ")
 }
 
 /// A render cut out of: the handout's size, 500 x 500.
@@ -654,15 +658,7 @@ pub fn cut_from_render(shot: &Frame) -> Option<Located> {
         return None;
     }
     let figures = figures_at(CUT_FROM);
-    let points: Vec<(u32, u32)> = (0..SAMPLES)
-        .flat_map(|j| (0..SAMPLES).map(move |i| (i, j)))
-        .map(|(i, j)| {
-            (
-                (2 * i + 1) * w / (2 * SAMPLES),
-                (2 * j + 1) * h / (2 * SAMPLES),
-            )
-        })
-        .collect();
+    let points = sample_points(w, h);
     // (share of samples, figure, x, y)
     let mut best = (0.0, 0, 0, 0);
     for (k, f) in figures.iter().enumerate() {
@@ -702,14 +698,11 @@ pub fn cut_from_render(shot: &Frame) -> Option<Located> {
     }
     let (_, x, y) = place;
     let mut whole = figure.clone();
-    for v in 0..h {
-        for u in 0..w {
-            whole.color[((y + v) * CUT_FROM + x + u) as usize] = shot.color[(v * w + u) as usize];
-        }
+    for (v, row) in shot.color.chunks_exact(w as usize).enumerate() {
+        let at = ((y + v as u32) * CUT_FROM + x) as usize;
+        whole.color[at..at + w as usize].copy_from_slice(row);
     }
-    let lost = left_out([y, CUT_FROM - h - y, x, CUT_FROM - w - x], 1);
-    // Only the counts: what a window's frame would be does not apply.
-    let lost = lost.split(" (").next().unwrap_or_default();
+    let lost = sides([y, CUT_FROM - h - y, x, CUT_FROM - w - x]);
     let note = format!(
         "the image is the {w}x{h} part at ({x}, {y}) of a {CUT_FROM}x{CUT_FROM} render, cut out of it (lost: {lost}); it was checked in its place in the render, whose other pixels were taken from the handout's figure it matches"
     );

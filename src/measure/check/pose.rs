@@ -368,15 +368,17 @@ pub const MIN_POSE_SCORE: f64 = 0.97;
 /// to 99.2 % of its walls' pixels), and only the full-size score tells them apart.
 pub fn fit_pose(observed: &Frame, start: Camera, focals: &[f32]) -> Pose {
     let mut pose = search(observed, start, focals);
+    // The focal lengths whose best pose is known: none searched twice.
+    let mut tried = vec![pose.camera.focal];
     if let Some(&first) = focals.first().filter(|&&f| f != pose.camera.focal) {
         let alone = search(observed, start, &[first]);
+        tried.push(first);
         if alone.score >= pose.score {
             pose = alone;
         }
     }
     if pose.score < MIN_POSE_SCORE {
-        let tried = pose.camera.focal;
-        for f in focals.iter().filter(|&&f| f != tried) {
+        for f in focals.iter().filter(|f| !tried.contains(f)) {
             let alone = search(observed, start, std::slice::from_ref(f));
             if alone.score > pose.score {
                 pose = alone;
