@@ -6,14 +6,18 @@
 //! camera (the pose fitted); a public solution's moved light with --fit-light;
 //! and both moved, with --fit-light.
 
-use criterion::{criterion_group, criterion_main, Criterion};
+mod common;
+#[path = "common/criterion.rs"]
+mod medians;
+
+use criterion::Criterion;
 use glam::Vec3;
 use rasterlab::app::check::{check_image_file, CheckOptions};
 use rasterlab::app::{self as app, image_io::write_image, Settings};
 use rasterlab::{cornell_box, Camera, Figure, Light, StageName};
 use std::hint::black_box;
 
-fn checks(c: &mut Criterion) {
+fn checks(c: &mut Criterion, ids: &mut Vec<String>) {
     let dir = std::env::temp_dir().join(format!("rasterlab-bench-check-{}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("a temporary folder");
     let walked = Camera {
@@ -72,6 +76,7 @@ fn checks(c: &mut Criterion) {
         );
         let path = dir.join(format!("{i}.png"));
         write_image(&frame, &path).expect("the screenshot written");
+        ids.push(format!("check 500x500/{name}"));
         g.bench_function(name, |b| {
             b.iter(|| black_box(check_image_file(&path, options).expect("checked")))
         });
@@ -80,5 +85,17 @@ fn checks(c: &mut Criterion) {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-criterion_group!(benches, checks);
-criterion_main!(benches);
+fn main() {
+    let since = std::time::SystemTime::now();
+    let mut c = Criterion::default().configure_from_args();
+    let mut ids = Vec::new();
+    checks(&mut c, &mut ids);
+    c.final_summary();
+    if common::recording() {
+        common::record(
+            "check",
+            &["median_ms"],
+            &medians::criterion_medians(since, &ids),
+        );
+    }
+}

@@ -2,11 +2,17 @@
 //! measure before optimising: the box at 500x500 and 2000x2000, and the box split
 //! 16 x 16 and 183 x 183 (a million triangles) at 1920x1080, depth-only and lit,
 //! with each rasterizer. Criterion reports medians; Mpixel/s and Mtriangles/s
-//! follow from the throughput it is given.
+//! follow from the throughput it is given. The group `threads` draws with one
+//! and two threads. `RASTERLAB_RECORD=1` writes the medians to docs/bench/.
 
-use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+mod common;
+#[path = "common/criterion.rs"]
+mod medians;
+
+use criterion::{Criterion, Throughput};
 use rasterlab::app::figure::Inputs;
 use rasterlab::app::figure::Raster;
+use rasterlab::app::parallel::Parallel;
 use rasterlab::app::Settings;
 use rasterlab::pipeline::raster::rows::walk_line;
 use rasterlab::pipeline::raster::Lines;
@@ -14,24 +20,46 @@ use rasterlab::scene::{cornell_box, subdivide};
 use rasterlab::Pixel;
 use rasterlab::{Figure, Frame, Mesh, StageName};
 use std::hint::black_box;
+use std::time::Duration;
 
-fn bench(c: &mut Criterion, group: &str, mesh: &Mesh, size: (u32, u32), figures: &[Figure]) {
-    let settings = Settings {
+/// 20 samples in about 3 s after 1 s of warming up (criterion takes longer where
+/// 20 frames need it): the whole sitting in minutes, not half an hour.
+fn short(g: &mut criterion::BenchmarkGroup<criterion::measurement::WallTime>) {
+    g.sample_size(20)
+        .warm_up_time(Duration::from_secs(1))
+        .measurement_time(Duration::from_secs(3));
+}
+
+/// The handout's view at `size`, the focal length the image's height.
+fn settings(size: (u32, u32)) -> Settings {
+    Settings {
         camera: rasterlab::Camera {
             focal: size.1 as f32,
             ..rasterlab::Camera::handout(size.0, size.1)
         },
         ..Settings::default()
-    };
+    }
+}
+
+fn bench(
+    c: &mut Criterion,
+    ids: &mut Vec<String>,
+    group: &str,
+    mesh: &Mesh,
+    size: (u32, u32),
+    figures: &[Figure],
+) {
+    let settings = settings(size);
     let (camera, uniforms) = (settings.camera, Inputs::lit(settings.light));
     let mut g = c.benchmark_group(group);
-    g.sample_size(20);
+    short(&mut g);
     g.throughput(Throughput::Elements((size.0 * size.1) as u64));
     for &figure in figures {
         for raster in [Raster::Rows, Raster::Edge] {
             let figure = figure.with_raster(raster);
             let mut pipeline = figure.pipeline_for(mesh);
             let mut frame = Frame::default();
+            ids.push(format!("{group}/{}", figure.label()));
             g.bench_function(figure.label(), |b| {
                 b.iter(|| pipeline.render(&uniforms, mesh, &camera, &mut frame))
             });
@@ -40,16 +68,24 @@ fn bench(c: &mut Criterion, group: &str, mesh: &Mesh, size: (u32, u32), figures:
     g.finish();
 }
 
-fn stages(c: &mut Criterion) {
+fn stages(c: &mut Criterion, ids: &mut Vec<String>) {
     let box_ = cornell_box();
-    bench(c, "box 500x500", &box_, (500, 500), &Figure::FIGURES);
-    bench(c, "box 2000x2000", &box_, (2000, 2000), &Figure::FIGURES);
+    bench(c, ids, "box 500x500", &box_, (500, 500), &Figure::FIGURES);
+    bench(
+        c,
+        ids,
+        "box 2000x2000",
+        &box_,
+        (2000, 2000),
+        &Figure::FIGURES,
+    );
     let lit_and_depth = [
         Figure::of(StageName::Depth),
         Figure::of(StageName::PixelLight),
     ];
     bench(
         c,
+        ids,
         "cornell:16 1920x1080",
         &subdivide(&box_, 16),
         (1920, 1080),
@@ -57,6 +93,7 @@ fn stages(c: &mut Criterion) {
     );
     bench(
         c,
+        ids,
         "cornell:183 1920x1080",
         &subdivide(&box_, 183),
         (1920, 1080),
@@ -67,9 +104,9 @@ fn stages(c: &mut Criterion) {
 /// `--lines bresenham` against the handout's `Interpolate`: walking every line
 /// from (0, 0) to |dx|, |dy| <= 64 (Mpixel/s of line), and the wireframe and
 /// filled box at 500x500 drawn each way (rows rasterizer).
-fn lines(c: &mut Criterion) {
+fn lines(c: &mut Criterion, ids: &mut Vec<String>) {
     let mut g = c.benchmark_group("lines");
-    g.sample_size(20);
+    short(&mut g);
     let ends: Vec<(i32, i32)> = (-64..=64)
         .flat_map(|x| (-64..=64).map(move |y| (x, y)))
         .collect();
@@ -79,7 +116,9 @@ fn lines(c: &mut Criterion) {
         .sum();
     g.throughput(Throughput::Elements(pixels));
     for lines in [Lines::Interpolate, Lines::Bresenham] {
-        g.bench_function(format!("walk every line, {lines:?}"), |b| {
+        let name = format!("walk every line, {lines:?}");
+        ids.push(format!("lines/{name}"));
+        g.bench_function(name, |b| {
             b.iter(|| {
                 let mut sum = 0i64;
                 for &(x, y) in &ends {
@@ -100,7 +139,9 @@ fn lines(c: &mut Criterion) {
             let figure = Figure::of(stage).with_lines(lines);
             let mut pipeline = figure.pipeline_for(&mesh);
             let mut frame = Frame::default();
-            g.bench_function(format!("box 500x500, {}", figure.label()), |b| {
+            let name = format!("box 500x500, {}", figure.label());
+            ids.push(format!("lines/{name}"));
+            g.bench_function(name, |b| {
                 b.iter(|| pipeline.render(&uniforms, &mesh, &camera, &mut frame))
             });
         }
@@ -108,5 +149,69 @@ fn lines(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, stages, lines);
-criterion_main!(benches);
+/// The same frame drawn by one thread and by two, in bands (`--threads`): every
+/// stage of the box at 2000x2000, pixel-light at 500x500, and a million
+/// triangles with the exact rasterizer.
+fn threads(c: &mut Criterion, ids: &mut Vec<String>) {
+    let box_ = cornell_box();
+    let million = subdivide(&box_, 183);
+    let mut cases: Vec<(String, &Mesh, (u32, u32), Figure)> = Figure::FIGURES
+        .iter()
+        .map(|&f| {
+            (
+                format!("box 2000x2000, {}", f.label()),
+                &box_,
+                (2000, 2000),
+                f,
+            )
+        })
+        .collect();
+    let lit = Figure::of(StageName::PixelLight);
+    cases.push((
+        format!("box 500x500, {}", lit.label()),
+        &box_,
+        (500, 500),
+        lit,
+    ));
+    for stage in [StageName::Depth, StageName::PixelLight] {
+        let figure = Figure::of(stage).with_raster(Raster::Edge);
+        let name = format!("cornell:183 1920x1080, {}", figure.label());
+        cases.push((name, &million, (1920, 1080), figure));
+    }
+    let mut g = c.benchmark_group("threads");
+    short(&mut g);
+    for (name, mesh, size, figure) in cases {
+        let settings = settings(size);
+        let inputs = Inputs::lit(settings.light);
+        for threads in [1, 2] {
+            let mut parallel = Parallel::new(figure, mesh, threads).expect("threads");
+            let mut frame = Frame::default();
+            let name = format!(
+                "{name}, {threads} thread{}",
+                if threads > 1 { "s" } else { "" }
+            );
+            ids.push(format!("threads/{name}"));
+            g.bench_function(name, |b| {
+                b.iter(|| parallel.render(&inputs, mesh, &settings.camera, &mut frame))
+            });
+        }
+    }
+    g.finish();
+}
+
+fn main() {
+    let since = std::time::SystemTime::now();
+    let mut c = Criterion::default().configure_from_args();
+    let mut ids = Vec::new();
+    stages(&mut c, &mut ids);
+    lines(&mut c, &mut ids);
+    threads(&mut c, &mut ids);
+    c.final_summary();
+    if common::recording() {
+        common::record(
+            "stages",
+            &["median_ms"],
+            &medians::criterion_medians(since, &ids),
+        );
+    }
+}

@@ -9,6 +9,9 @@
 //! `RUSTFLAGS="-C target-cpu=native" cargo bench --features bench --bench versus_euc` (euc's
 //! `mul_add` becomes one FMA instruction there). The table's title says which.
 //! `cargo test` runs only the smallest case, once, as a smoke test.
+//! `RASTERLAB_RECORD=1` writes the medians to docs/bench/.
+
+mod common;
 
 use euc::buffer::Buffer2d;
 use euc::rasterizer::{BackfaceCullingDisabled, Triangles};
@@ -202,7 +205,9 @@ fn median(mut v: Vec<Duration>) -> f64 {
 
 /// Runs one case; returns its table row and the pixels in which euc's image and
 /// rasterlab's edge rasterizer's differ.
-fn run(case: &Case) -> (String, usize) {
+/// The case's table row, and its medians (rows, edge, euc, in ms) and pixels
+/// differing between edge and euc (percent).
+fn run(case: &Case) -> (String, usize, Vec<f64>) {
     let settings = Settings {
         camera: rasterlab::Camera {
             focal: if case.size == (500, 500) {
@@ -272,7 +277,8 @@ fn run(case: &Case) -> (String, usize) {
         edge / e,
         100.0 * differing as f64 / pixels as f64,
     );
-    (row, differing)
+    let percent = 100.0 * differing as f64 / pixels as f64;
+    (row, differing, vec![rows, edge, e, percent])
 }
 
 fn build() -> &'static str {
@@ -308,7 +314,7 @@ fn main() {
         // `cargo test`: one round of the small cases, and the images must agree.
         for case in &mut cases {
             case.rounds = 1;
-            let (_, differing) = run(case);
+            let (_, differing, _) = run(case);
             assert!(differing < 2000, "{}: {differing} pixels differ", case.name);
         }
         return;
@@ -343,7 +349,17 @@ fn main() {
     );
     println!("| case | triangles | rasterlab rows | rasterlab edge | euc 0.5.3 | rows / euc | edge / euc | pixels differing, edge vs euc |");
     println!("|---|---|---|---|---|---|---|---|");
+    let mut sitting = Vec::new();
     for case in &cases {
-        println!("{}", run(case).0);
+        let (row, _, medians) = run(case);
+        println!("{row}");
+        sitting.push((case.name.to_string(), medians));
+    }
+    if common::recording() {
+        common::record(
+            "versus_euc",
+            &["rows_ms", "edge_ms", "euc_ms", "differing_percent"],
+            &sitting,
+        );
     }
 }

@@ -1,0 +1,79 @@
+//! The medians criterion wrote for this run, for `common::record`
+//! (benches/stages.rs and benches/check.rs include this file).
+
+use std::path::{Path, PathBuf};
+use std::time::SystemTime;
+
+/// Where criterion keeps its results.
+fn criterion_home() -> PathBuf {
+    if let Some(home) = std::env::var_os("CRITERION_HOME") {
+        return home.into();
+    }
+    let target = std::env::var_os("CARGO_TARGET_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("target"));
+    target.join("criterion")
+}
+
+fn text_field<'a>(json: &'a str, field: &str) -> Option<&'a str> {
+    let start = json.find(&format!("\"{field}\":\""))? + field.len() + 4;
+    let end = json[start..].find('"')? + start;
+    Some(&json[start..end])
+}
+
+/// The median, in ms, of every benchmark of `groups` that this process measured
+/// (criterion's `new/estimates.json` written since `since`), in the order given
+/// by `order` (the full ids as the bench named them).
+pub fn criterion_medians(since: SystemTime, order: &[String]) -> Vec<(String, Vec<f64>)> {
+    let mut found = Vec::new();
+    let mut stack = vec![criterion_home()];
+    while let Some(dir) = stack.pop() {
+        let Ok(entries) = std::fs::read_dir(&dir) else {
+            continue;
+        };
+        for entry in entries.flatten() {
+            let path = entry.path();
+            if path.is_dir() {
+                stack.push(path);
+                continue;
+            }
+            if !path.ends_with("new/benchmark.json") {
+                continue;
+            }
+            let estimates = path.with_file_name("estimates.json");
+            let fresh = std::fs::metadata(&estimates)
+                .and_then(|m| m.modified())
+                .is_ok_and(|t| t >= since);
+            let (Ok(about), Ok(numbers)) = (
+                std::fs::read_to_string(&path),
+                std::fs::read_to_string(&estimates),
+            ) else {
+                continue;
+            };
+            let Some(id) = text_field(&about, "full_id") else {
+                continue;
+            };
+            // "median":{"confidence_interval":{...},"point_estimate":N,...}
+            let median = numbers.find("\"median\":").and_then(|at| {
+                let rest = &numbers[at..];
+                let from = rest.find("\"point_estimate\":")? + 17;
+                let to = rest[from..].find([',', '}'])? + from;
+                rest[from..to].parse::<f64>().ok()
+            });
+            if let (true, Some(ns)) = (fresh, median) {
+                found.push((id.to_string(), ns / 1e6));
+            }
+        }
+    }
+    order
+        .iter()
+        .map(|id| {
+            let ms = found
+                .iter()
+                .find(|(f, _)| f == id)
+                .unwrap_or_else(|| panic!("criterion measured no {id} in this run"))
+                .1;
+            (id.clone(), vec![ms])
+        })
+        .collect()
+}

@@ -1,0 +1,65 @@
+//! A benchmark sitting kept in the repository: with `RASTERLAB_RECORD=1` a bench
+//! writes its medians to `docs/bench/NAME-BUILD.tsv`, which the pages' generated
+//! blocks are made from and `tests/quoted.rs` holds them to. `benches/sitting.sh`
+//! runs the whole sitting, both builds.
+
+use std::path::Path;
+
+/// Which build this is: "native" when compiled with AVX2 (`-C target-cpu=native`
+/// here), "default" for the x86-64 baseline.
+pub fn build() -> &'static str {
+    if cfg!(target_feature = "avx2") {
+        "native"
+    } else {
+        "default"
+    }
+}
+
+/// Whether this run should be written down: `RASTERLAB_RECORD` is set and the
+/// benchmarks really ran (not `cargo test`'s single pass).
+pub fn recording() -> bool {
+    std::env::var_os("RASTERLAB_RECORD").is_some() && std::env::args().any(|a| a == "--bench")
+}
+
+fn git(args: &[&str]) -> String {
+    std::process::Command::new("git")
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .ok()
+        .filter(|o| o.status.success())
+        .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
+        .unwrap_or_default()
+}
+
+/// Writes `rows` (a case and its values, named by `columns`) to
+/// `docs/bench/NAME-BUILD.tsv`, headed by the commit measured and the date. A tree
+/// with changes not yet committed is named `COMMIT+changes`.
+pub fn record(name: &str, columns: &[&str], rows: &[(String, Vec<f64>)]) {
+    let mut commit = git(&["rev-parse", "--short=7", "HEAD"]);
+    if !git(&["status", "--porcelain", "--untracked-files=no"]).is_empty() {
+        commit.push_str("+changes");
+    }
+    let date = std::process::Command::new("date")
+        .args(["-u", "+%Y-%m-%d"])
+        .output()
+        .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
+        .unwrap_or_default();
+    let mut csv = format!(
+        "# commit {commit}, {date}, {} build, one thread unless the case says\ncase\t{}\n",
+        build(),
+        columns.join("\t")
+    );
+    for (case, values) in rows {
+        assert!(!case.contains('\t'), "a tab in {case}");
+        let values: Vec<String> = values.iter().map(|v| format!("{v:.4}")).collect();
+        csv.push_str(&format!("{case}\t{}\n", values.join("\t")));
+    }
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/bench");
+    std::fs::create_dir_all(&dir).expect("docs/bench");
+    let path = dir.join(format!("{name}-{}.tsv", build()));
+    let temporary = path.with_extension("tsv.new");
+    std::fs::write(&temporary, csv).expect("the sitting written");
+    std::fs::rename(&temporary, &path).expect("the sitting renamed into place");
+    eprintln!("recorded {}", path.display());
+}

@@ -1,0 +1,96 @@
+#!/usr/bin/env bash
+# One benchmark sitting, the one the pages quote: every bench in both builds,
+# the viewer's frame times and callgrind's instruction counts, written to
+# docs/bench/ (see docs/bench/README.md). Then
+#   RASTERLAB_UPDATE_DOCS=1 cargo test --release --test suite quoted::
+# rewrites the pages' generated blocks from it. Takes about an hour on 2 cores.
+#
+#   bash benches/sitting.sh            everything
+#   bash benches/sitting.sh default    the default build's benches only
+#   bash benches/sitting.sh native     the native build's benches only
+#   bash benches/sitting.sh viewer     the viewer's frame times (needs xvfb-run)
+#   bash benches/sitting.sh instructions   callgrind's counts (needs valgrind)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+what=${1:-all}
+# Pinned to one core, the other left to the system: the machine is shared and
+# noisy, and one thread is what the tables compare.
+pin="taskset -c 1 nice -n -15"
+command -v taskset >/dev/null || pin=""
+
+benches() { # build: default or native
+    local flags="" target=target
+    if [ "$1" = native ]; then
+        flags="-C target-cpu=native"
+        target=target/native
+    fi
+    for bench in stages versus_euc check; do
+        if [ "$1" = native ] && [ $bench = check ]; then
+            continue # check's time is quoted for the default build only
+        fi
+        RUSTFLAGS="$flags" CARGO_TARGET_DIR=$target cargo build --release --features bench --bench $bench
+        RASTERLAB_RECORD=1 RUSTFLAGS="$flags" CARGO_TARGET_DIR=$target CRITERION_HOME=$target/criterion \
+            $pin cargo bench --features bench --bench $bench
+    done
+}
+
+viewer() {
+    cargo build --release
+    local out=docs/bench/viewer-default.tsv.new
+    {
+        echo "# commit $(git rev-parse --short=7 HEAD), $(date -u +%Y-%m-%d), default build, under Xvfb, pixel-light 500x500, threads: all cores"
+        printf 'case\tframe_ms\tdraw_ms\n'
+        for run in 1 2 3; do
+            line=$(xvfb-run -a target/release/rasterlab view --fps 0 --frames 600 2>&1 >/dev/null | grep '^view: [0-9]* frames')
+            echo "$line" | sed -E "s/^view: ([0-9]+) frames, frame time median ([0-9.]+) ms, draw median ([0-9.]+) ms$/--fps 0, run $run\t\2\t\3/"
+        done
+        line=$(xvfb-run -a target/release/rasterlab view --frames 300 2>&1 >/dev/null | grep '^view: [0-9]* frames')
+        echo "$line" | sed -E "s/^view: ([0-9]+) frames, frame time median ([0-9.]+) ms, draw median ([0-9.]+) ms$/--fps 60\t\2\t\3/"
+    } >$out
+    mv $out docs/bench/viewer-default.tsv
+}
+
+# Instructions per frame of pixel-light with each option beyond the handout:
+# the difference between 11 timed renders and 1, over 10 (callgrind counts
+# exactly, so one run each is enough).
+instructions() {
+    cargo build --release
+    local out=docs/bench/instructions-default.tsv.new
+    {
+        echo "# commit $(git rev-parse --short=7 HEAD), $(date -u +%Y-%m-%d), default build, one thread, callgrind"
+        printf 'case\tinstructions_per_frame\n'
+        while IFS= read -r case; do
+            local counts=()
+            for n in 1 11; do
+                # shellcheck disable=SC2086
+                valgrind --tool=callgrind --callgrind-out-file=/tmp/rasterlab-cg.out \
+                    target/release/rasterlab $case --threads 1 --time $n -o /tmp/rasterlab-cg.png \
+                    >/dev/null 2>&1
+                counts+=("$(sed -n 's/^summary: //p' /tmp/rasterlab-cg.out)")
+            done
+            printf '%s\t%s\n' "$case" $(((counts[1] - counts[0]) / 10))
+        done <<'EOF'
+depth
+pixel-light
+pixel-light --texture checker
+pixel-light --texture checker --filter bilinear
+pixel-light --texture checker --affine
+pixel-light --normal-map bumps
+pixel-light --texture checker --normal-map bumps --parallax
+pixel-light --shadows
+pixel-light --shadows --pcf
+pixel-light --dof 4.001,0.05
+depth --scene cornell:64
+EOF
+    } >$out
+    mv $out docs/bench/instructions-default.tsv
+    rm -f /tmp/rasterlab-cg.out /tmp/rasterlab-cg.png
+}
+
+case $what in
+all) benches default && benches native && viewer && instructions ;;
+default | native) benches "$what" ;;
+viewer) viewer ;;
+instructions) instructions ;;
+*) echo "sitting.sh: unknown part '$what' (all, default, native, viewer, instructions)" >&2 && exit 2 ;;
+esac
