@@ -24,13 +24,17 @@ benches() { # build: default or native
         flags="-C target-cpu=native"
         target=target/native
     fi
-    for bench in stages versus_euc check; do
+    for bench in stages versus_euc threads check; do
         if [ "$1" = native ] && [ $bench = check ]; then
             continue # check's time is quoted for the default build only
         fi
+        local cores=$pin
+        if [ $bench = threads ] && [ -n "$pin" ]; then
+            cores="taskset -c 0,1 nice -n -15" # one thread against two: both cores
+        fi
         RUSTFLAGS="$flags" CARGO_TARGET_DIR=$target cargo build --release --features bench --bench $bench
         RASTERLAB_RECORD=1 RUSTFLAGS="$flags" CARGO_TARGET_DIR=$target CRITERION_HOME=$target/criterion \
-            $pin cargo bench --features bench --bench $bench
+            $cores cargo bench --features bench --bench $bench
     done
 }
 

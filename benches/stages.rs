@@ -2,8 +2,8 @@
 //! measure before optimising: the box at 500x500 and 2000x2000, and the box split
 //! 16 x 16 and 183 x 183 (a million triangles) at 1920x1080, depth-only and lit,
 //! with each rasterizer. Criterion reports medians; Mpixel/s and Mtriangles/s
-//! follow from the throughput it is given. The group `threads` draws with one
-//! and two threads. `RASTERLAB_RECORD=1` writes the medians to docs/bench/.
+//! follow from the throughput it is given (benches/threads.rs draws with two
+//! threads). `RASTERLAB_RECORD=1` writes the medians to docs/bench/.
 
 mod common;
 #[path = "common/criterion.rs"]
@@ -12,7 +12,6 @@ mod medians;
 use criterion::{Criterion, Throughput};
 use rasterlab::app::figure::Inputs;
 use rasterlab::app::figure::Raster;
-use rasterlab::app::parallel::Parallel;
 use rasterlab::app::Settings;
 use rasterlab::pipeline::raster::rows::walk_line;
 use rasterlab::pipeline::raster::Lines;
@@ -149,69 +148,16 @@ fn lines(c: &mut Criterion, ids: &mut Vec<String>) {
     g.finish();
 }
 
-/// The same frame drawn by one thread and by two, in bands (`--threads`): every
-/// stage of the box at 2000x2000, pixel-light at 500x500, and a million
-/// triangles with the exact rasterizer.
-fn threads(c: &mut Criterion, ids: &mut Vec<String>) {
-    let box_ = cornell_box();
-    let million = subdivide(&box_, 183);
-    let mut cases: Vec<(String, &Mesh, (u32, u32), Figure)> = Figure::FIGURES
-        .iter()
-        .map(|&f| {
-            (
-                format!("box 2000x2000, {}", f.label()),
-                &box_,
-                (2000, 2000),
-                f,
-            )
-        })
-        .collect();
-    let lit = Figure::of(StageName::PixelLight);
-    cases.push((
-        format!("box 500x500, {}", lit.label()),
-        &box_,
-        (500, 500),
-        lit,
-    ));
-    for stage in [StageName::Depth, StageName::PixelLight] {
-        let figure = Figure::of(stage).with_raster(Raster::Edge);
-        let name = format!("cornell:183 1920x1080, {}", figure.label());
-        cases.push((name, &million, (1920, 1080), figure));
-    }
-    let mut g = c.benchmark_group("threads");
-    short(&mut g);
-    for (name, mesh, size, figure) in cases {
-        let settings = settings(size);
-        let inputs = Inputs::lit(settings.light);
-        for threads in [1, 2] {
-            let mut parallel = Parallel::new(figure, mesh, threads).expect("threads");
-            let mut frame = Frame::default();
-            let name = format!(
-                "{name}, {threads} thread{}",
-                if threads > 1 { "s" } else { "" }
-            );
-            ids.push(format!("threads/{name}"));
-            g.bench_function(name, |b| {
-                b.iter(|| parallel.render(&inputs, mesh, &settings.camera, &mut frame))
-            });
-        }
-    }
-    g.finish();
-}
-
 fn main() {
     let since = std::time::SystemTime::now();
     let mut c = Criterion::default().configure_from_args();
     let mut ids = Vec::new();
     stages(&mut c, &mut ids);
     lines(&mut c, &mut ids);
-    threads(&mut c, &mut ids);
     c.final_summary();
     if common::recording() {
-        common::record(
-            "stages",
-            &["median_ms"],
-            &medians::criterion_medians(since, &ids),
-        );
+        if let Some(medians) = medians::criterion_medians(since, &ids) {
+            common::record("stages", &["median_ms"], &medians);
+        }
     }
 }

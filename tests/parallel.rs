@@ -1,37 +1,61 @@
 //! Drawing in bands on several threads gives the image of drawing on one, byte
-//! for byte, whatever the number of threads, the stage or the rasterizer.
+//! for byte, whatever the number of threads, the stage or the rasterizer: with
+//! the mesh wholly in view (each band passes over the triangles outside its
+//! rows), partly out of it (every band looks at every triangle), and with a
+//! million triangles.
 
 use rasterlab::app::figure::Inputs;
 use rasterlab::app::figure::Raster;
 use rasterlab::app::parallel::Parallel;
 use rasterlab::app::Settings;
 use rasterlab::scene::parse_scene;
-use rasterlab::{Figure, Frame};
+use rasterlab::{Figure, Frame, StageName};
 
 #[test]
 fn one_two_and_seven_threads_draw_the_same_bytes() {
     let sphere = parse_scene("sphere:100000").unwrap();
     let box_ = parse_scene("cornell").unwrap();
+    let million = parse_scene("cornell:183").unwrap();
+    let lit_and_depth = [
+        Figure::of(StageName::Depth),
+        Figure::of(StageName::PixelLight),
+    ];
     let settings = Settings {
         camera: rasterlab::Camera {
-            focal: 320.0,
+            focal: 240.0,
             ..rasterlab::Camera::handout(320, 241) // bands of unequal height
         },
         ..Settings::default()
     };
-    for (scene, position) in [
-        (&box_, settings.camera.position),
-        (&sphere, glam::Vec3::new(0.0, 0.0, -2.5)),
+    let handout = settings.camera.position;
+    for (scene, position, yaw, in_view, figures) in [
+        (&box_, handout, 0.0, true, &Figure::FIGURES[..]),
+        (
+            &sphere,
+            glam::Vec3::new(0.0, 0.0, -2.5),
+            0.0,
+            true,
+            &Figure::FIGURES,
+        ),
+        (
+            &sphere,
+            glam::Vec3::new(0.8, 0.3, -1.6),
+            20.0,
+            false,
+            &Figure::FIGURES,
+        ),
+        (&million, handout, 0.0, true, &lit_and_depth),
     ] {
         let s = Settings {
             camera: rasterlab::Camera {
                 position,
+                yaw: f32::to_radians(yaw),
                 ..settings.camera
             },
             ..settings
         };
         let (camera, uniforms) = (s.camera, Inputs::lit(s.light));
-        for figure in Figure::FIGURES {
+        for &figure in figures {
             for raster in [Raster::Rows, Raster::Edge] {
                 let figure = figure.with_raster(raster);
                 let draw = |threads: usize| {
@@ -41,6 +65,8 @@ fn one_two_and_seven_threads_draw_the_same_bytes() {
                     (frame, p.stats())
                 };
                 let (one, stats) = draw(1);
+                // In view, each band passes over the triangles outside its rows.
+                assert_eq!(stats.view_tests_skipped, in_view, "{}", scene.name);
                 // Something was drawn (the box's points light 18 pixels): equal
                 // black frames would prove nothing.
                 let drawn = one.color.iter().filter(|&&c| c != 0).count();

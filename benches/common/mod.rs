@@ -33,11 +33,18 @@ fn git(args: &[&str]) -> String {
 }
 
 /// Writes `rows` (a case and its values, named by `columns`) to
-/// `docs/bench/NAME-BUILD.tsv`, headed by the commit measured and the date. A tree
-/// with changes not yet committed is named `COMMIT+changes`.
+/// `docs/bench/NAME-BUILD.tsv`, headed by the commit measured and the date. Code
+/// with changes not yet committed (in what the benches build) is named
+/// `COMMIT+changes`.
 pub fn record(name: &str, columns: &[&str], rows: &[(String, Vec<f64>)]) {
     let mut commit = git(&["rev-parse", "--short=7", "HEAD"]);
-    if !git(&["status", "--porcelain", "--untracked-files=no"]).is_empty() {
+    let built = ["src", "benches", "Cargo.toml", "Cargo.lock"];
+    let status = [
+        &["status", "--porcelain", "--untracked-files=no", "--"][..],
+        &built,
+    ]
+    .concat();
+    if !git(&status).is_empty() {
         commit.push_str("+changes");
     }
     let date = std::process::Command::new("date")

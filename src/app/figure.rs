@@ -9,7 +9,7 @@ use crate::extensions::texture::{Filter, Maps, Model, NO_MAPS};
 use crate::extensions::textured::{
     SmoothTexturedPixelLight, TexturedPixelLight, TexturedVertexLight,
 };
-use crate::pipeline::draw::{Cull, Stats};
+use crate::pipeline::draw::{Cull, Stats, Vertices};
 use crate::pipeline::raster::{EdgeRaster, Lines, Rasterizer, RowRaster};
 use crate::pipeline::StageName;
 use crate::pipeline::{
@@ -254,6 +254,17 @@ pub trait Render: Send {
     /// `target`, a band of the camera's image.
     fn draw(&mut self, inputs: &Inputs, mesh: &Mesh, camera: &Camera, target: &mut Target);
 
+    /// [`Render::draw`] with the frame's vertices prepared once for all bands
+    /// ([`Pipeline::draw_prepared`]).
+    fn draw_prepared(
+        &mut self,
+        inputs: &Inputs,
+        mesh: &Mesh,
+        camera: &Camera,
+        vertices: &Vertices,
+        target: &mut Target,
+    );
+
     /// What the last frame did.
     fn stats(&self) -> Stats;
 
@@ -276,6 +287,19 @@ struct Drawn<M: MakeStage, I: Interpolation, R: Rasterizer> {
 impl<M: MakeStage, I: Interpolation, R: Rasterizer> Render for Drawn<M, I, R> {
     fn draw(&mut self, inputs: &Inputs, mesh: &Mesh, camera: &Camera, target: &mut Target) {
         self.pipeline.draw(&M::make(inputs), mesh, camera, target)
+    }
+
+    fn draw_prepared(
+        &mut self,
+        inputs: &Inputs,
+        mesh: &Mesh,
+        camera: &Camera,
+        vertices: &Vertices,
+        target: &mut Target,
+    ) {
+        let stage = M::make(inputs);
+        self.pipeline
+            .draw_prepared(&stage, mesh, camera, vertices, target)
     }
 
     fn stats(&self) -> Stats {

@@ -6,7 +6,7 @@
 use crate::app::figure::{Figure, Inputs, Render};
 use crate::extensions::normal_map::TangentFrame;
 use crate::extensions::texture::Model;
-use crate::pipeline::draw::Stats;
+use crate::pipeline::draw::{Stats, Vertices};
 use crate::pipeline::{Camera, Frame, Mesh};
 
 /// A figure drawn in `threads` bands.
@@ -16,7 +16,17 @@ pub struct Parallel {
     stats: Stats,
     /// The faces' tangent frames, for a figure with a normal map.
     frames: Vec<TangentFrame>,
+    /// The mesh's vertices in camera space, prepared once per frame for every band.
+    vertices: Vertices,
+    /// Each row's work this frame, and where the bands end (kept between frames).
+    work: Vec<u64>,
+    ends: Vec<u32>,
 }
+
+/// What setting up the triangles around one vertex costs, in pixels filled:
+/// a mesh of small triangles is split into bands by its vertices, a few large
+/// ones by their pixels.
+const VERTEX_COST: u64 = 64;
 
 /// The number of cores, the default `--threads`.
 pub fn cores() -> usize {
@@ -46,6 +56,9 @@ impl Parallel {
             pool,
             stats: Stats::default(),
             frames: figure.tangent_frames(model),
+            vertices: Vertices::default(),
+            work: Vec::new(),
+            ends: Vec::new(),
         })
     }
 
@@ -53,23 +66,28 @@ impl Parallel {
     /// thread, each with the stage made from `inputs` (and the faces' tangent
     /// frames, which this keeps).
     pub fn render(&mut self, inputs: &Inputs, mesh: &Mesh, camera: &Camera, frame: &mut Frame) {
+        self.vertices.prepare(mesh, camera);
+        self.balance(camera);
         let inputs = &Inputs {
             frames: &self.frames,
             ..*inputs
         };
         let depth = self.pipelines[0].depth_test();
         frame.resize(camera.width, camera.height, depth);
-        let bands = frame.bands(self.pipelines.len());
+        let vertices = &self.vertices;
+        let bands = frame.bands_ending(&self.ends);
         let work = self.pipelines.iter_mut().zip(bands);
         match &self.pool {
             None => {
                 for (pipeline, mut band) in work {
-                    pipeline.draw(inputs, mesh, camera, &mut band);
+                    pipeline.draw_prepared(inputs, mesh, camera, vertices, &mut band);
                 }
             }
             Some(pool) => pool.scope(|s| {
                 for (pipeline, mut band) in work {
-                    s.spawn(move |_| pipeline.draw(inputs, mesh, camera, &mut band));
+                    s.spawn(move |_| {
+                        pipeline.draw_prepared(inputs, mesh, camera, vertices, &mut band)
+                    });
                 }
             }),
         }
@@ -81,6 +99,33 @@ impl Parallel {
             stats.depth_rejected += s.depth_rejected;
         }
         self.stats = stats;
+    }
+
+    /// Ends the bands where each holds about the same work: a row's pixels, and
+    /// for a mesh in view its vertices, each worth [`VERTEX_COST`] pixels. Any
+    /// split draws the same bytes; this one keeps both threads busy when the
+    /// triangles crowd one part of the image.
+    fn balance(&mut self, camera: &Camera) {
+        let (n, height) = (self.pipelines.len(), camera.height as usize);
+        self.work.clear();
+        self.work.resize(height, camera.width as u64);
+        let centre = camera.height as f32 / 2.0;
+        for &y in self.vertices.screen_y() {
+            let row = ((y + centre).max(0.0) as usize).min(height.saturating_sub(1));
+            self.work[row] += VERTEX_COST;
+        }
+        let total: u64 = self.work.iter().sum();
+        self.ends.clear();
+        let (mut done, mut row) = (0u64, 0usize);
+        for band in 1..n {
+            let share = total * band as u64 / n as u64;
+            while row < height && done + self.work[row] / 2 < share {
+                done += self.work[row];
+                row += 1;
+            }
+            self.ends.push(row as u32);
+        }
+        self.ends.push(camera.height);
     }
 
     /// Whether the figure tests depth, so its frames need a depth buffer.

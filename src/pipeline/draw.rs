@@ -37,9 +37,9 @@ pub struct Pipeline<V: Varying, I: Interpolation = Perspective, R: Rasterizer = 
     /// What covers the pixels of each primitive.
     pub raster: R,
     scratch: R::Scratch<V>,
-    /// Every vertex of the mesh in camera space, transformed once per frame
-    /// however many faces share it.
-    camera_space: Vec<Vec3>,
+    /// The mesh's vertices as this frame sees them, when [`Pipeline::draw`]
+    /// prepares them itself.
+    vertices: Vertices,
     visible: Visible<V>,
     stats: Stats,
     interpolation: PhantomData<I>,
@@ -124,7 +124,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Default for Pipeline<V, I, R> 
             batch_shading: false,
             raster: R::default(),
             scratch: Default::default(),
-            camera_space: Vec::new(),
+            vertices: Vertices::default(),
             visible: Visible {
                 index: Vec::new(),
                 carried: Vec::new(),
@@ -172,17 +172,36 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         camera: &Camera,
         target: &mut Target,
     ) {
+        // Taken out of `self` while the faces are drawn, and put back for the next frame.
+        let mut vertices = std::mem::take(&mut self.vertices);
+        vertices.prepare(mesh, camera);
+        self.draw_prepared(stage, mesh, camera, &vertices, target);
+        self.vertices = vertices;
+    }
+
+    /// [`Pipeline::draw`] with the frame's vertices already taken to camera space
+    /// ([`Vertices::prepare`]): the bands of one frame share them, so the
+    /// per-vertex work is done once however many threads draw.
+    pub fn draw_prepared<S: Stage<Varying = V>>(
+        &mut self,
+        stage: &S,
+        mesh: &Mesh,
+        camera: &Camera,
+        vertices: &Vertices,
+        target: &mut Target,
+    ) {
         assert!(
             !S::DEPTH_TEST || target.depth.is_some(),
             "a stage with a depth test needs a depth buffer"
         );
+        assert_eq!(
+            vertices.camera_space.len(),
+            mesh.positions.len(),
+            "vertices prepared for another mesh"
+        );
         target.clear();
         let mut view = View::new(camera, target, self.lines);
-        // Taken out of `self` while the faces are drawn, and put back for the next frame.
-        let mut camera_space = std::mem::take(&mut self.camera_space);
-        camera_space.clear();
-        camera_space.extend(mesh.positions.iter().map(|&p| view.projection.to_camera(p)));
-        let fit = view.fit(&camera_space);
+        let fit = vertices.fit;
         self.stats = Stats {
             triangles: mesh.faces.len() as u64,
             near_plane_skipped: fit.in_front && camera.near.is_some(),
@@ -195,10 +214,9 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         view.view_tests = !fit.inside;
         // Chosen once per frame, so that no loop over faces or pixels tests it.
         match self.batch_shading {
-            true => self.draw_faces::<S, true>(stage, mesh, camera, &view, &camera_space, target),
-            false => self.draw_faces::<S, false>(stage, mesh, camera, &view, &camera_space, target),
+            true => self.draw_faces::<S, true>(stage, mesh, camera, &view, vertices, target),
+            false => self.draw_faces::<S, false>(stage, mesh, camera, &view, vertices, target),
         }
-        self.camera_space = camera_space;
     }
 
     /// Every face of `mesh`: culled, through the vertex shader, then drawn as
@@ -209,9 +227,23 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         mesh: &Mesh,
         camera: &Camera,
         view: &View,
-        camera_space: &[Vec3],
+        vertices: &Vertices,
         target: &mut Target,
     ) {
+        let camera_space = &vertices.camera_space[..];
+        // A band of a frame in full view passes over the triangles wholly above or
+        // below its rows before any shading or setup (the band that holds them
+        // draws them), so that threads share the per-triangle work. The rows are
+        // widened by two, more than either rasterizer's rounding can reach.
+        let rows = &view.viewport.bounds.y;
+        let centre = view.viewport.centre.1;
+        let (top, bottom) = (
+            (rows.start - 2) as f32 - centre,
+            (rows.end + 2) as f32 - centre,
+        );
+        let whole = rows.start == 0 && rows.end >= camera.height as i32;
+        let pass_over =
+            S::PRIMITIVE == Primitive::Polygons && !whole && !vertices.screen_y.is_empty();
         for (index, face) in mesh.faces.iter().enumerate() {
             if self.cull != Cull::None {
                 let v0 = mesh.positions[face.vertices[0] as usize];
@@ -223,6 +255,14 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
                 };
                 if culled {
                     self.stats.culled += 1;
+                    continue;
+                }
+            }
+            if pass_over {
+                let [a, b, c] = face.vertices.map(|v| vertices.screen_y[v as usize]);
+                if a.max(b).max(c) < top || a.min(b).min(c) > bottom {
+                    // In full view it is drawn, by the band its rows are in.
+                    self.stats.drawn += 1;
                     continue;
                 }
             }
@@ -517,13 +557,6 @@ struct View {
 }
 
 /// Where a whole mesh lies, found once per frame from its bounding box.
-struct Fit {
-    /// Every point is in front of the near plane (or there is none).
-    in_front: bool,
-    /// Every point projects inside the screen, so no triangle needs a view test.
-    inside: bool,
-}
-
 impl View {
     fn new(camera: &Camera, target: &Target, lines: Lines) -> Self {
         let rect = camera.screen_rect();
@@ -553,33 +586,63 @@ impl View {
     }
 }
 
-impl View {
-    /// Where a mesh lies, from its vertices in camera space: all in front of the
-    /// near plane, and all projecting inside the screen. A triangle lies within its
-    /// corners' projections (all in front of the camera), so then none needs a cut
-    /// or a view test.
-    fn fit(&self, camera_space: &[Vec3]) -> Fit {
-        let near = self.near.unwrap_or(f32::MIN_POSITIVE);
+#[derive(Clone, Copy, Default)]
+struct Fit {
+    in_front: bool,
+    inside: bool,
+}
+
+/// The mesh's vertices as one frame sees them, before any face is drawn: each
+/// in camera space (eq. 8, once however many faces share it) and where all of
+/// them lie, which spares each triangle the tests the whole mesh makes needless.
+#[derive(Default)]
+pub struct Vertices {
+    camera_space: Vec<Vec3>,
+    /// Each vertex's projected y (eq. 4, from the screen's centre) when the whole
+    /// mesh is in view; empty otherwise.
+    screen_y: Vec<f32>,
+    fit: Fit,
+}
+
+impl Vertices {
+    /// Each vertex's projected y, from the screen's centre (eq. 4), when the
+    /// whole mesh is in view, so that a caller can see where the triangles are;
+    /// empty otherwise.
+    pub fn screen_y(&self) -> &[f32] {
+        &self.screen_y
+    }
+
+    /// Takes every vertex of `mesh` to `camera`'s space and looks at where they
+    /// all lie; the buffers are kept for the next frame.
+    pub fn prepare(&mut self, mesh: &Mesh, camera: &Camera) {
+        let projection = camera.projection();
+        self.camera_space.clear();
+        self.camera_space
+            .extend(mesh.positions.iter().map(|&p| projection.to_camera(p)));
+        let (near, rect) = (camera.near, camera.screen_rect());
         let mut fit = Fit {
             in_front: true,
             inside: true,
         };
-        for &c in camera_space {
-            let in_front = c.z >= near && c.z.is_finite();
-            let on_screen = || {
-                self.projection.project_centred(c).is_some_and(|(x, y, _)| {
-                    (self.rect.left..=self.rect.right).contains(&x)
-                        && (self.rect.top..=self.rect.bottom).contains(&y)
-                })
-            };
+        self.screen_y.clear();
+        for &c in &self.camera_space {
+            let in_front = c.z >= near.unwrap_or(f32::MIN_POSITIVE) && c.z.is_finite();
             fit.in_front &= in_front;
-            fit.inside &= in_front && on_screen();
+            let on_screen = in_front
+                && projection.project_centred(c).is_some_and(|(x, y, _)| {
+                    self.screen_y.push(y);
+                    (rect.left..=rect.right).contains(&x) && (rect.top..=rect.bottom).contains(&y)
+                });
+            fit.inside &= on_screen;
             if !fit.in_front && !fit.inside {
                 break;
             }
         }
-        fit.in_front |= self.near.is_none();
-        fit
+        fit.in_front |= near.is_none();
+        if !(fit.inside && fit.in_front) {
+            self.screen_y.clear();
+        }
+        self.fit = fit;
     }
 }
 

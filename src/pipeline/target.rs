@@ -85,25 +85,47 @@ impl Frame {
     /// The image as `n` render targets over consecutive bands of rows (at most `n`,
     /// none empty), so each can be drawn on its own, on its own thread.
     pub fn bands(&mut self, n: usize) -> Vec<Target<'_>> {
+        let rows = self.height.div_ceil(n.max(1) as u32).max(1);
+        let ends: Vec<u32> = (1..=n.max(1) as u32)
+            .map(|i| (i * rows).min(self.height))
+            .collect();
+        self.bands_ending(&ends)
+    }
+
+    /// The image as render targets over consecutive bands of rows, the band `i`
+    /// ending before row `ends[i]`; an end that does not pass the one before it
+    /// gives no band, and the last band reaches the image's bottom.
+    pub fn bands_ending(&mut self, ends: &[u32]) -> Vec<Target<'_>> {
         let (w, h) = (self.width, self.height);
-        let rows = h.div_ceil(n.max(1) as u32).max(1);
-        let chunk = (rows * w) as usize;
         let has_depth = !self.depth.is_empty();
-        let mut depth = self.depth.chunks_mut(chunk.max(1));
-        self.color
-            .chunks_mut(chunk.max(1))
-            .enumerate()
-            .map(|(i, color)| {
-                let start = i as u32 * rows;
-                Target {
-                    width: w,
-                    height: h,
-                    rows: start..(start + rows).min(h),
-                    color: Some(color),
-                    depth: if has_depth { depth.next() } else { None },
-                }
-            })
-            .collect()
+        let (mut color, mut depth) = (&mut self.color[..], &mut self.depth[..]);
+        let mut bands = Vec::with_capacity(ends.len());
+        let mut start = 0;
+        for (i, &end) in ends.iter().enumerate() {
+            let end = if i + 1 == ends.len() { h } else { end.min(h) };
+            if end <= start {
+                continue;
+            }
+            let pixels = ((end - start) * w) as usize;
+            let (c, rest) = std::mem::take(&mut color).split_at_mut(pixels);
+            color = rest;
+            let d = if has_depth {
+                let (d, rest) = std::mem::take(&mut depth).split_at_mut(pixels);
+                depth = rest;
+                Some(d)
+            } else {
+                None
+            };
+            bands.push(Target {
+                width: w,
+                height: h,
+                rows: start..end,
+                color: Some(c),
+                depth: d,
+            });
+            start = end;
+        }
+        bands
     }
 
     /// The colour at (x, y) as 8-bit RGB.

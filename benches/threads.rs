@@ -1,0 +1,88 @@
+//! `cargo bench --features bench --bench threads`: the same frame drawn by one
+//! thread and by two, in bands (`--threads`), as issue #20 measures it: every stage
+//! of the box at 2000x2000, pixel-light at 500x500, and a million triangles with
+//! the exact rasterizer. Run it with two cores free (benches/sitting.sh pins it to
+//! cores 0 and 1). `RASTERLAB_RECORD=1` writes the medians to docs/bench/.
+
+mod common;
+#[path = "common/criterion.rs"]
+mod medians;
+
+use criterion::Criterion;
+use rasterlab::app::figure::{Inputs, Raster};
+use rasterlab::app::parallel::Parallel;
+use rasterlab::app::Settings;
+use rasterlab::scene::{cornell_box, subdivide};
+use rasterlab::{Figure, Frame, Mesh, StageName};
+use std::time::Duration;
+
+/// The same frame drawn by one thread and by two, in bands (`--threads`): every
+/// stage of the box at 2000x2000, pixel-light at 500x500, and a million
+/// triangles with the exact rasterizer.
+fn threads(c: &mut Criterion, ids: &mut Vec<String>) {
+    let box_ = cornell_box();
+    let million = subdivide(&box_, 183);
+    let mut cases: Vec<(String, &Mesh, (u32, u32), Figure)> = Figure::FIGURES
+        .iter()
+        .map(|&f| {
+            (
+                format!("box 2000x2000, {}", f.label()),
+                &box_,
+                (2000, 2000),
+                f,
+            )
+        })
+        .collect();
+    let lit = Figure::of(StageName::PixelLight);
+    cases.push((
+        format!("box 500x500, {}", lit.label()),
+        &box_,
+        (500, 500),
+        lit,
+    ));
+    for stage in [StageName::Depth, StageName::PixelLight] {
+        let figure = Figure::of(stage).with_raster(Raster::Edge);
+        let name = format!("cornell:183 1920x1080, {}", figure.label());
+        cases.push((name, &million, (1920, 1080), figure));
+    }
+    let mut g = c.benchmark_group("threads");
+    g.sample_size(20)
+        .warm_up_time(Duration::from_secs(1))
+        .measurement_time(Duration::from_secs(3));
+    for (name, mesh, size, figure) in cases {
+        let settings = Settings {
+            camera: rasterlab::Camera {
+                focal: size.1 as f32,
+                ..rasterlab::Camera::handout(size.0, size.1)
+            },
+            ..Settings::default()
+        };
+        let inputs = Inputs::lit(settings.light);
+        for threads in [1, 2] {
+            let mut parallel = Parallel::new(figure, mesh, threads).expect("threads");
+            let mut frame = Frame::default();
+            let name = format!(
+                "{name}, {threads} thread{}",
+                if threads > 1 { "s" } else { "" }
+            );
+            ids.push(format!("threads/{name}"));
+            g.bench_function(name, |b| {
+                b.iter(|| parallel.render(&inputs, mesh, &settings.camera, &mut frame))
+            });
+        }
+    }
+    g.finish();
+}
+
+fn main() {
+    let since = std::time::SystemTime::now();
+    let mut c = Criterion::default().configure_from_args();
+    let mut ids = Vec::new();
+    threads(&mut c, &mut ids);
+    c.final_summary();
+    if common::recording() {
+        if let Some(medians) = medians::criterion_medians(since, &ids) {
+            common::record("threads", &["median_ms"], &medians);
+        }
+    }
+}
