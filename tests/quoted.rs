@@ -13,7 +13,7 @@ fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
-fn read(path: &str) -> String {
+pub(crate) fn read(path: &str) -> String {
     std::fs::read_to_string(root().join(path)).unwrap_or_else(|e| panic!("{path}: {e}"))
 }
 
@@ -320,32 +320,38 @@ fn pages() -> Vec<String> {
     pages
 }
 
-#[test]
-fn the_generated_blocks_are_the_committed_runs() {
-    let run = Run::committed();
+/// Checks (or, with `RASTERLAB_UPDATE_DOCS`, rewrites) every block
+/// `<!-- KIND: NAME -->` ... `<!-- end KIND -->` of `pages` against
+/// `generate(NAME)`; returns "PAGE NAME" for each block found.
+pub(crate) fn rewrite_blocks(
+    kind: &str,
+    pages: &[&str],
+    generate: impl Fn(&str) -> String,
+) -> Vec<String> {
     let update = std::env::var_os("RASTERLAB_UPDATE_DOCS").is_some();
+    let (open, close) = (format!("<!-- {kind}: "), format!("<!-- end {kind} -->"));
     let mut found = Vec::new();
-    for page in pages() {
-        let path = root().join(&page);
-        let mut text = read(&page);
+    for &page in pages {
+        let path = root().join(page);
+        let mut text = read(page);
         let mut at = 0;
-        while let Some(start) = text[at..].find("<!-- report: ").map(|i| i + at) {
+        while let Some(start) = text[at..].find(&open).map(|i| i + at) {
             let name_end = text[start..].find(" -->").unwrap() + start;
-            let name = text[start + 13..name_end].to_string();
+            let name = text[start + open.len()..name_end].to_string();
             let body = name_end + 5;
             let end = text[body..]
-                .find("<!-- end report -->")
+                .find(&close)
                 .unwrap_or_else(|| panic!("{page}: block {name} never ends"))
                 + body;
-            let want = run.block(&name);
+            let want = generate(&name);
             if update {
                 text.replace_range(body..end, &want);
             } else {
                 assert_eq!(
                     text[body..end],
                     want,
-                    "{page}: the block {name} is not what docs/report says; run \
-                     RASTERLAB_UPDATE_DOCS=1 cargo test --release --test suite quoted::"
+                    "{page}: the block {name} is not what its run says; run \
+                     RASTERLAB_UPDATE_DOCS=1 cargo test --release --test suite"
                 );
             }
             found.push(format!("{page} {name}"));
@@ -355,6 +361,25 @@ fn the_generated_blocks_are_the_committed_runs() {
             std::fs::write(&path, &text).unwrap();
         }
     }
+    found
+}
+
+/// Each stage's median time at 500 x 500 (k = 1) in the committed report run.
+pub(crate) fn report_medians() -> Vec<(String, f64)> {
+    Run::committed()
+        .rows
+        .iter()
+        .filter(|r| r.get("size") == "500" && r.get("k") == "1")
+        .map(|r| (r.get("stage").to_string(), r.num("median_ms")))
+        .collect()
+}
+
+#[test]
+fn the_generated_blocks_are_the_committed_runs() {
+    let run = Run::committed();
+    let pages = pages();
+    let pages: Vec<&str> = pages.iter().map(String::as_str).collect();
+    let found = rewrite_blocks("report", &pages, |name| run.block(name));
     for want in [
         "README.md times",
         "README.md answers",

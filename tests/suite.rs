@@ -4,6 +4,7 @@
 //! runs one. `viewer.rs` needs a display and stays a binary of its own.
 
 mod allocations;
+mod benched;
 mod check;
 mod cli;
 mod common;
