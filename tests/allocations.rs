@@ -2,15 +2,17 @@
 //! triangle, row or pixel. A counting allocator watches a second frame of every
 //! figure, with both rasterizers, on the box and on a finer mesh. It counts on the
 //! drawing thread only, so the suite's other tests, running beside it, are not
-//! counted.
+//! counted. On two threads every thread is counted, in a process of its own.
 
 use rasterlab::app::figure::Inputs;
 use rasterlab::app::figure::Raster;
+use rasterlab::app::parallel::Parallel;
 use rasterlab::app::Settings;
 use rasterlab::scene::{cornell_box, subdivide};
 use rasterlab::{Figure, Frame};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 struct Counting;
 
@@ -20,9 +22,16 @@ thread_local! {
     static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
 }
 
+/// Every thread's allocations, for a process that runs one test alone.
+static COUNTING_ALL: AtomicBool = AtomicBool::new(false);
+static ALLOCATIONS_ALL: AtomicUsize = AtomicUsize::new(0);
+
 fn count() {
     if COUNTING.get() {
         ALLOCATIONS.set(ALLOCATIONS.get() + 1);
+    }
+    if COUNTING_ALL.load(Ordering::Relaxed) {
+        ALLOCATIONS_ALL.fetch_add(1, Ordering::Relaxed);
     }
 }
 
@@ -74,3 +83,61 @@ fn a_frame_after_the_first_allocates_nothing() {
         }
     }
 }
+
+/// The same on two threads, the bands drawn on a rayon pool, over 200 frames:
+/// every thread's allocations are counted, so the test runs in a process of its
+/// own (this test binary again, with only this test), where no other test
+/// allocates beside it.
+#[test]
+fn a_frame_on_two_threads_after_the_first_allocates_nothing() {
+    const ALONE: &str = "RASTERLAB_ALLOCATIONS_ALONE";
+    let name = "allocations::a_frame_on_two_threads_after_the_first_allocates_nothing";
+    if std::env::var_os(ALONE).is_none() {
+        let out = std::process::Command::new(std::env::current_exe().unwrap())
+            .args(["--exact", name, "--test-threads", "1"])
+            .env(ALONE, "1")
+            .output()
+            .unwrap();
+        let said = String::from_utf8_lossy(&out.stdout) + String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{said}");
+        assert!(
+            said.contains("1 passed"),
+            "the test did not run alone: {said}"
+        );
+        return;
+    }
+    let s = Settings::default();
+    let (camera, uniforms) = (s.camera, Inputs::lit(s.light));
+    for mesh in [cornell_box(), subdivide(&cornell_box(), 8)] {
+        for figure in Figure::FIGURES {
+            for raster in [Raster::Rows, Raster::Edge] {
+                let figure = figure.with_raster(raster);
+                let mut parallel = Parallel::new(figure, &mesh, 2).unwrap();
+                let mut frame = Frame::default();
+                parallel.render(&uniforms, &mesh, &camera, &mut frame);
+                ALLOCATIONS_ALL.store(0, Ordering::Relaxed);
+                COUNTING_ALL.store(true, Ordering::Relaxed);
+                for _ in 0..FRAMES {
+                    parallel.render(&uniforms, &mesh, &camera, &mut frame);
+                }
+                COUNTING_ALL.store(false, Ordering::Relaxed);
+                let n = ALLOCATIONS_ALL.load(Ordering::Relaxed);
+                assert!(
+                    n <= RAYON_BOOKKEEPING,
+                    "{} on {} triangles: {n} allocations in {FRAMES} frames",
+                    figure.label(),
+                    mesh.faces.len()
+                );
+            }
+        }
+    }
+}
+
+const FRAMES: usize = 200;
+/// What the pool's own bookkeeping may allocate in those frames, though nothing
+/// of ours does: handing each frame to the pool queues one job in rayon's
+/// injector, which takes a new block of 63 places when one fills, and the
+/// blocks it lets go are freed through crossbeam's epoch collector, whose bags
+/// of deferred frees are allocated as they fill (3 to 5 in 200 frames here).
+/// An allocation per frame, or per band, would be 200 or more.
+const RAYON_BOOKKEEPING: usize = FRAMES / 20;

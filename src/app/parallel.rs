@@ -7,7 +7,7 @@ use crate::app::figure::{Figure, Inputs, Render};
 use crate::extensions::normal_map::TangentFrame;
 use crate::extensions::texture::Model;
 use crate::pipeline::draw::{Stats, Vertices};
-use crate::pipeline::{Camera, Frame, Mesh};
+use crate::pipeline::{Camera, Frame, Mesh, Target};
 
 /// A figure drawn in `threads` bands.
 pub struct Parallel {
@@ -21,6 +21,45 @@ pub struct Parallel {
     /// Each row's work this frame, and where the bands end (kept between frames).
     work: Vec<u64>,
     ends: Vec<u32>,
+}
+
+/// What every band of a frame reads.
+#[derive(Clone, Copy)]
+struct Shared<'a> {
+    inputs: &'a Inputs<'a>,
+    mesh: &'a Mesh,
+    camera: &'a Camera,
+    vertices: &'a Vertices,
+}
+
+/// Draws `target` with `pipelines`, the band of pipeline `i` ending before row
+/// `ends[i]` (the last at the target's bottom): the two halves of the pipelines on
+/// the two sides of a `rayon::join`, whose jobs live on the stack, so a frame
+/// allocates nothing for its threads. Every pipeline draws, an empty band too,
+/// so that each one's counts are this frame's.
+fn draw_bands(pipelines: &mut [Box<dyn Render>], ends: &[u32], target: Target, shared: Shared) {
+    let Shared {
+        inputs,
+        mesh,
+        camera,
+        vertices,
+    } = shared;
+    match pipelines {
+        [] => {}
+        [only] => {
+            let mut target = target;
+            only.draw_prepared(inputs, mesh, camera, vertices, &mut target)
+        }
+        _ => {
+            let half = pipelines.len() / 2;
+            let (top, bottom) = target.split_at_row(ends[half - 1]);
+            let (first, second) = pipelines.split_at_mut(half);
+            rayon::join(
+                || draw_bands(first, &ends[..half], top, shared),
+                || draw_bands(second, &ends[half..], bottom, shared),
+            );
+        }
+    }
 }
 
 /// What setting up the triangles around one vertex costs, in pixels filled:
@@ -74,22 +113,16 @@ impl Parallel {
         };
         let depth = self.pipelines[0].depth_test();
         frame.resize(camera.width, camera.height, depth);
-        let vertices = &self.vertices;
-        let bands = frame.bands_ending(&self.ends);
-        let work = self.pipelines.iter_mut().zip(bands);
+        let shared = Shared {
+            inputs,
+            mesh,
+            camera,
+            vertices: &self.vertices,
+        };
+        let (pipelines, ends, target) = (&mut self.pipelines[..], &self.ends[..], frame.target());
         match &self.pool {
-            None => {
-                for (pipeline, mut band) in work {
-                    pipeline.draw_prepared(inputs, mesh, camera, vertices, &mut band);
-                }
-            }
-            Some(pool) => pool.scope(|s| {
-                for (pipeline, mut band) in work {
-                    s.spawn(move |_| {
-                        pipeline.draw_prepared(inputs, mesh, camera, vertices, &mut band)
-                    });
-                }
-            }),
+            None => draw_bands(pipelines, ends, target, shared),
+            Some(pool) => pool.install(|| draw_bands(pipelines, ends, target, shared)),
         }
         // Each band decides about every triangle alike; pixels are its own.
         let mut stats = self.pipelines[0].stats();

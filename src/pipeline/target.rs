@@ -30,6 +30,43 @@ impl Target<'_> {
         }
     }
 
+    /// This band cut in two before image row `row` (kept within the band): the
+    /// rows above it and the rows from it on, each a target of its own.
+    pub fn split_at_row(self, row: u32) -> (Self, Self) {
+        let row = row.clamp(self.rows.start, self.rows.end);
+        let pixels = ((row - self.rows.start) * self.width) as usize;
+        let (color_top, color_bottom) = match self.color {
+            Some(c) => {
+                let (a, b) = c.split_at_mut(pixels);
+                (Some(a), Some(b))
+            }
+            None => (None, None),
+        };
+        let (depth_top, depth_bottom) = match self.depth {
+            Some(d) => {
+                let (a, b) = d.split_at_mut(pixels);
+                (Some(a), Some(b))
+            }
+            None => (None, None),
+        };
+        let (width, height) = (self.width, self.height);
+        let top = Target {
+            width,
+            height,
+            rows: self.rows.start..row,
+            color: color_top,
+            depth: depth_top,
+        };
+        let bottom = Target {
+            width,
+            height,
+            rows: row..self.rows.end,
+            color: color_bottom,
+            depth: depth_bottom,
+        };
+        (top, bottom)
+    }
+
     /// The index of pixel (x, y) in the buffers; (x, y) must be in the band.
     #[inline]
     pub fn index(&self, x: i32, y: i32) -> usize {
@@ -96,35 +133,16 @@ impl Frame {
     /// ending before row `ends[i]`; an end that does not pass the one before it
     /// gives no band, and the last band reaches the image's bottom.
     pub fn bands_ending(&mut self, ends: &[u32]) -> Vec<Target<'_>> {
-        let (w, h) = (self.width, self.height);
-        let has_depth = !self.depth.is_empty();
-        let (mut color, mut depth) = (&mut self.color[..], &mut self.depth[..]);
         let mut bands = Vec::with_capacity(ends.len());
-        let mut start = 0;
-        for (i, &end) in ends.iter().enumerate() {
-            let end = if i + 1 == ends.len() { h } else { end.min(h) };
-            if end <= start {
-                continue;
+        let mut rest = self.target();
+        for &end in &ends[..ends.len().saturating_sub(1)] {
+            if end > rest.rows.start && end < rest.rows.end {
+                let (band, below) = rest.split_at_row(end);
+                bands.push(band);
+                rest = below;
             }
-            let pixels = ((end - start) * w) as usize;
-            let (c, rest) = std::mem::take(&mut color).split_at_mut(pixels);
-            color = rest;
-            let d = if has_depth {
-                let (d, rest) = std::mem::take(&mut depth).split_at_mut(pixels);
-                depth = rest;
-                Some(d)
-            } else {
-                None
-            };
-            bands.push(Target {
-                width: w,
-                height: h,
-                rows: start..end,
-                color: Some(c),
-                depth: d,
-            });
-            start = end;
         }
+        bands.push(rest);
         bands
     }
 
