@@ -57,30 +57,38 @@ unsafe impl GlobalAlloc for Counting {
 #[global_allocator]
 static GLOBAL: Counting = Counting;
 
+/// Every figure with both rasterizers, on the box and on a finer mesh.
+fn cases() -> Vec<(rasterlab::Mesh, Figure)> {
+    let mut cases = Vec::new();
+    for mesh in [cornell_box(), subdivide(&cornell_box(), 8)] {
+        for figure in Figure::FIGURES {
+            for raster in [Raster::Rows, Raster::Edge] {
+                cases.push((mesh.clone(), figure.with_raster(raster)));
+            }
+        }
+    }
+    cases
+}
+
 #[test]
 fn a_frame_after_the_first_allocates_nothing() {
     let s = Settings::default();
     let (camera, uniforms) = (s.camera, Inputs::lit(s.light));
-    for mesh in [cornell_box(), subdivide(&cornell_box(), 8)] {
-        for figure in Figure::FIGURES {
-            for raster in [Raster::Rows, Raster::Edge] {
-                let figure = figure.with_raster(raster);
-                let mut pipeline = figure.pipeline_for(&mesh);
-                let mut frame = Frame::default();
-                // The first frame allocates its buffers: the counter sees them.
-                ALLOCATIONS.set(0);
-                COUNTING.set(true);
-                pipeline.render(&uniforms, &mesh, &camera, &mut frame);
-                COUNTING.set(false);
-                assert!(ALLOCATIONS.get() > 0);
-                ALLOCATIONS.set(0);
-                COUNTING.set(true);
-                pipeline.render(&uniforms, &mesh, &camera, &mut frame);
-                COUNTING.set(false);
-                let n = ALLOCATIONS.get();
-                assert_eq!(n, 0, "{} on {} triangles", figure.label(), mesh.faces.len());
-            }
-        }
+    for (mesh, figure) in cases() {
+        let mut pipeline = figure.pipeline_for(&mesh);
+        let mut frame = Frame::default();
+        // The first frame allocates its buffers: the counter sees them.
+        ALLOCATIONS.set(0);
+        COUNTING.set(true);
+        pipeline.render(&uniforms, &mesh, &camera, &mut frame);
+        COUNTING.set(false);
+        assert!(ALLOCATIONS.get() > 0);
+        ALLOCATIONS.set(0);
+        COUNTING.set(true);
+        pipeline.render(&uniforms, &mesh, &camera, &mut frame);
+        COUNTING.set(false);
+        let n = ALLOCATIONS.get();
+        assert_eq!(n, 0, "{} on {} triangles", figure.label(), mesh.faces.len());
     }
 }
 
@@ -108,28 +116,23 @@ fn a_frame_on_two_threads_after_the_first_allocates_nothing() {
     }
     let s = Settings::default();
     let (camera, uniforms) = (s.camera, Inputs::lit(s.light));
-    for mesh in [cornell_box(), subdivide(&cornell_box(), 8)] {
-        for figure in Figure::FIGURES {
-            for raster in [Raster::Rows, Raster::Edge] {
-                let figure = figure.with_raster(raster);
-                let mut parallel = Parallel::new(figure, &mesh, 2).unwrap();
-                let mut frame = Frame::default();
-                parallel.render(&uniforms, &mesh, &camera, &mut frame);
-                ALLOCATIONS_ALL.store(0, Ordering::Relaxed);
-                COUNTING_ALL.store(true, Ordering::Relaxed);
-                for _ in 0..FRAMES {
-                    parallel.render(&uniforms, &mesh, &camera, &mut frame);
-                }
-                COUNTING_ALL.store(false, Ordering::Relaxed);
-                let n = ALLOCATIONS_ALL.load(Ordering::Relaxed);
-                assert!(
-                    n <= RAYON_BOOKKEEPING,
-                    "{} on {} triangles: {n} allocations in {FRAMES} frames",
-                    figure.label(),
-                    mesh.faces.len()
-                );
-            }
+    for (mesh, figure) in cases() {
+        let mut parallel = Parallel::new(figure, &mesh, 2).unwrap();
+        let mut frame = Frame::default();
+        parallel.render(&uniforms, &mesh, &camera, &mut frame);
+        ALLOCATIONS_ALL.store(0, Ordering::Relaxed);
+        COUNTING_ALL.store(true, Ordering::Relaxed);
+        for _ in 0..FRAMES {
+            parallel.render(&uniforms, &mesh, &camera, &mut frame);
         }
+        COUNTING_ALL.store(false, Ordering::Relaxed);
+        let n = ALLOCATIONS_ALL.load(Ordering::Relaxed);
+        assert!(
+            n <= RAYON_BOOKKEEPING,
+            "{} on {} triangles: {n} allocations in {FRAMES} frames",
+            figure.label(),
+            mesh.faces.len()
+        );
     }
 }
 
