@@ -30,7 +30,7 @@ fn checks(c: &mut Criterion, ids: &mut Vec<String>) {
         power: Vec3::splat(5.1),
         ..Light::handout()
     };
-    let handout = Settings::default();
+    let handout = common::settings((500, 500));
     let fit = CheckOptions {
         fit_light: true,
         ..CheckOptions::default()
@@ -66,7 +66,7 @@ fn checks(c: &mut Criterion, ids: &mut Vec<String>) {
         ),
     ];
     let mut g = c.benchmark_group("check 500x500");
-    g.sample_size(10);
+    medians::short(&mut g, 10);
     for (i, (name, settings, options)) in cases.into_iter().enumerate() {
         let (frame, _) = app::render(
             Figure::of(StageName::PixelLight),
@@ -86,14 +86,5 @@ fn checks(c: &mut Criterion, ids: &mut Vec<String>) {
 }
 
 fn main() {
-    let since = std::time::SystemTime::now();
-    let mut c = Criterion::default().configure_from_args();
-    let mut ids = Vec::new();
-    checks(&mut c, &mut ids);
-    c.final_summary();
-    if common::recording() {
-        if let Some(medians) = medians::criterion_medians(since, &ids) {
-            common::record("check", &["median_ms"], &medians);
-        }
-    }
+    medians::run_and_record("check", checks);
 }

@@ -2,8 +2,9 @@
 # One benchmark sitting, the one the pages quote: every bench in both builds,
 # the viewer's frame times and callgrind's instruction counts, written to
 # docs/bench/ (see docs/bench/README.md). Then
-#   RASTERLAB_UPDATE_DOCS=1 cargo test --release --test suite quoted::
-# rewrites the pages' generated blocks from it. Takes about an hour on 2 cores.
+#   RASTERLAB_UPDATE_DOCS=1 cargo test --release --test suite benched::
+# rewrites the pages' generated blocks from it. Took 25 minutes on 2 cores, with
+# the native build compiled from cold.
 #
 #   bash benches/sitting.sh            everything
 #   bash benches/sitting.sh default    the default build's benches only
@@ -38,6 +39,14 @@ benches() { # build: default or native
     done
 }
 
+# One row of the viewer's own summary: `view LABEL ARGS...` runs it under Xvfb.
+view() {
+    local label=$1
+    shift
+    xvfb-run -a target/release/rasterlab view "$@" 2>&1 >/dev/null |
+        sed -nE "s/^view: [0-9]+ frames, frame time median ([0-9.]+) ms, draw median ([0-9.]+) ms$/$label\t\1\t\2/p"
+}
+
 viewer() {
     cargo build --release
     local out=docs/bench/viewer-default.tsv.new
@@ -45,11 +54,9 @@ viewer() {
         echo "# commit $(git rev-parse --short=7 HEAD), $(date -u +%Y-%m-%d), default build, under Xvfb, pixel-light 500x500, threads: all cores"
         printf 'case\tframe_ms\tdraw_ms\n'
         for run in 1 2 3; do
-            line=$(xvfb-run -a target/release/rasterlab view --fps 0 --frames 600 2>&1 >/dev/null | grep '^view: [0-9]* frames')
-            echo "$line" | sed -E "s/^view: ([0-9]+) frames, frame time median ([0-9.]+) ms, draw median ([0-9.]+) ms$/--fps 0, run $run\t\2\t\3/"
+            view "--fps 0, run $run" --fps 0 --frames 600
         done
-        line=$(xvfb-run -a target/release/rasterlab view --frames 300 2>&1 >/dev/null | grep '^view: [0-9]* frames')
-        echo "$line" | sed -E "s/^view: ([0-9]+) frames, frame time median ([0-9.]+) ms, draw median ([0-9.]+) ms$/--fps 60\t\2\t\3/"
+        view "--fps 60" --frames 300
     } >$out
     mv $out docs/bench/viewer-default.tsv
 }

@@ -10,6 +10,7 @@ mod common;
 mod medians;
 
 use criterion::{Criterion, Throughput};
+use medians::short;
 use rasterlab::app::figure::Inputs;
 use rasterlab::app::figure::Raster;
 use rasterlab::app::Settings;
@@ -19,26 +20,6 @@ use rasterlab::scene::{cornell_box, subdivide};
 use rasterlab::Pixel;
 use rasterlab::{Figure, Frame, Mesh, StageName};
 use std::hint::black_box;
-use std::time::Duration;
-
-/// 20 samples in about 3 s after 1 s of warming up (criterion takes longer where
-/// 20 frames need it): the whole sitting in minutes, not half an hour.
-fn short(g: &mut criterion::BenchmarkGroup<criterion::measurement::WallTime>) {
-    g.sample_size(20)
-        .warm_up_time(Duration::from_secs(1))
-        .measurement_time(Duration::from_secs(3));
-}
-
-/// The handout's view at `size`, the focal length the image's height.
-fn settings(size: (u32, u32)) -> Settings {
-    Settings {
-        camera: rasterlab::Camera {
-            focal: size.1 as f32,
-            ..rasterlab::Camera::handout(size.0, size.1)
-        },
-        ..Settings::default()
-    }
-}
 
 fn bench(
     c: &mut Criterion,
@@ -48,10 +29,10 @@ fn bench(
     size: (u32, u32),
     figures: &[Figure],
 ) {
-    let settings = settings(size);
+    let settings = common::settings(size);
     let (camera, uniforms) = (settings.camera, Inputs::lit(settings.light));
     let mut g = c.benchmark_group(group);
-    short(&mut g);
+    short(&mut g, 20);
     g.throughput(Throughput::Elements((size.0 * size.1) as u64));
     for &figure in figures {
         for raster in [Raster::Rows, Raster::Edge] {
@@ -105,7 +86,7 @@ fn stages(c: &mut Criterion, ids: &mut Vec<String>) {
 /// filled box at 500x500 drawn each way (rows rasterizer).
 fn lines(c: &mut Criterion, ids: &mut Vec<String>) {
     let mut g = c.benchmark_group("lines");
-    short(&mut g);
+    short(&mut g, 20);
     let ends: Vec<(i32, i32)> = (-64..=64)
         .flat_map(|x| (-64..=64).map(move |y| (x, y)))
         .collect();
@@ -149,15 +130,8 @@ fn lines(c: &mut Criterion, ids: &mut Vec<String>) {
 }
 
 fn main() {
-    let since = std::time::SystemTime::now();
-    let mut c = Criterion::default().configure_from_args();
-    let mut ids = Vec::new();
-    stages(&mut c, &mut ids);
-    lines(&mut c, &mut ids);
-    c.final_summary();
-    if common::recording() {
-        if let Some(medians) = medians::criterion_medians(since, &ids) {
-            common::record("stages", &["median_ms"], &medians);
-        }
-    }
+    medians::run_and_record("stages", |c, ids| {
+        stages(c, ids);
+        lines(c, ids);
+    });
 }

@@ -11,10 +11,8 @@ mod medians;
 use criterion::Criterion;
 use rasterlab::app::figure::{Inputs, Raster};
 use rasterlab::app::parallel::Parallel;
-use rasterlab::app::Settings;
 use rasterlab::scene::{cornell_box, subdivide};
 use rasterlab::{Figure, Frame, Mesh, StageName};
-use std::time::Duration;
 
 /// The same frame drawn by one thread and by two, in bands (`--threads`): every
 /// stage of the box at 2000x2000, pixel-light at 500x500, and a million
@@ -46,17 +44,9 @@ fn threads(c: &mut Criterion, ids: &mut Vec<String>) {
         cases.push((name, &million, (1920, 1080), figure));
     }
     let mut g = c.benchmark_group("threads");
-    g.sample_size(20)
-        .warm_up_time(Duration::from_secs(1))
-        .measurement_time(Duration::from_secs(3));
+    medians::short(&mut g, 20);
     for (name, mesh, size, figure) in cases {
-        let settings = Settings {
-            camera: rasterlab::Camera {
-                focal: size.1 as f32,
-                ..rasterlab::Camera::handout(size.0, size.1)
-            },
-            ..Settings::default()
-        };
+        let settings = common::settings(size);
         let inputs = Inputs::lit(settings.light);
         for threads in [1, 2] {
             let mut parallel = Parallel::new(figure, mesh, threads).expect("threads");
@@ -75,14 +65,5 @@ fn threads(c: &mut Criterion, ids: &mut Vec<String>) {
 }
 
 fn main() {
-    let since = std::time::SystemTime::now();
-    let mut c = Criterion::default().configure_from_args();
-    let mut ids = Vec::new();
-    threads(&mut c, &mut ids);
-    c.final_summary();
-    if common::recording() {
-        if let Some(medians) = medians::criterion_medians(since, &ids) {
-            common::record("threads", &["median_ms"], &medians);
-        }
-    }
+    medians::run_and_record("threads", threads);
 }

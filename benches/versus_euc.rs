@@ -203,22 +203,11 @@ fn median(mut v: Vec<Duration>) -> f64 {
     v[v.len() / 2].as_secs_f64() * 1e3
 }
 
-/// Runs one case; returns its table row and the pixels in which euc's image and
-/// rasterlab's edge rasterizer's differ.
-/// The case's table row, and its medians (rows, edge, euc, in ms) and pixels
-/// differing between edge and euc (percent).
+/// Runs one case; returns its table row, the pixels in which euc's image and
+/// rasterlab's edge rasterizer's differ, and what the sitting records: the
+/// medians (rows, edge, euc, in ms) and those pixels as a percentage.
 fn run(case: &Case) -> (String, usize, Vec<f64>) {
-    let settings = Settings {
-        camera: rasterlab::Camera {
-            focal: if case.size == (500, 500) {
-                500.0
-            } else {
-                case.size.1 as f32
-            },
-            ..rasterlab::Camera::handout(case.size.0, case.size.1)
-        },
-        ..Settings::default()
-    };
+    let settings = common::settings(case.size);
     let (camera, uniforms) = (settings.camera, Inputs::lit(settings.light));
     let figure = Figure::of(case.stage);
     let mut ours: Vec<_> = [Raster::Rows, Raster::Edge]
@@ -266,6 +255,7 @@ fn run(case: &Case) -> (String, usize, Vec<f64>) {
             format!("{ms:.2} ms, {:.0} Mpx/s", pixels as f64 / ms / 1e3)
         }
     };
+    let percent = 100.0 * differing as f64 / pixels as f64;
     let row = format!(
         "| {} | {} | {} | {} | {} | {:.2} | {:.2} | {:.3} % |",
         case.name,
@@ -275,9 +265,8 @@ fn run(case: &Case) -> (String, usize, Vec<f64>) {
         rate(e),
         rows / e,
         edge / e,
-        100.0 * differing as f64 / pixels as f64,
+        percent,
     );
-    let percent = 100.0 * differing as f64 / pixels as f64;
     (row, differing, vec![rows, edge, e, percent])
 }
 

@@ -1,8 +1,35 @@
-//! The medians criterion wrote for this run, for `common::record`
-//! (benches/stages.rs and benches/check.rs include this file).
+//! The criterion benches' harness: runs them, reads the medians criterion wrote
+//! and hands them to `common::record` (benches/stages.rs, threads.rs and
+//! check.rs include this file).
 
+use criterion::measurement::WallTime;
+use criterion::{BenchmarkGroup, Criterion};
 use std::path::{Path, PathBuf};
-use std::time::SystemTime;
+use std::time::{Duration, SystemTime};
+
+/// Runs `benches`, which name each benchmark they add (its full id) in the
+/// vector they are given, and with `RASTERLAB_RECORD` writes their medians as
+/// the sitting's `NAME-BUILD.tsv`.
+pub fn run_and_record(name: &str, benches: impl FnOnce(&mut Criterion, &mut Vec<String>)) {
+    let since = SystemTime::now();
+    let mut c = Criterion::default().configure_from_args();
+    let mut ids = Vec::new();
+    benches(&mut c, &mut ids);
+    c.final_summary();
+    if super::common::recording() {
+        if let Some(medians) = criterion_medians(since, &ids) {
+            super::common::record(name, &["median_ms"], &medians);
+        }
+    }
+}
+
+/// `samples` samples in about 3 s after 1 s of warming up (criterion takes
+/// longer where they need it): the whole sitting in minutes, not half an hour.
+pub fn short(g: &mut BenchmarkGroup<WallTime>, samples: usize) {
+    g.sample_size(samples)
+        .warm_up_time(Duration::from_secs(1))
+        .measurement_time(Duration::from_secs(3));
+}
 
 /// Where criterion keeps its results.
 fn criterion_home() -> PathBuf {
@@ -25,7 +52,7 @@ fn text_field<'a>(json: &'a str, field: &str) -> Option<&'a str> {
 /// named them) as this process measured it (criterion's `new/estimates.json`
 /// written since `since`), in that order; `None`, said on stderr, when the run
 /// measured only some of them (a filter), so a sitting is never a mix.
-pub fn criterion_medians(since: SystemTime, order: &[String]) -> Option<Vec<(String, Vec<f64>)>> {
+fn criterion_medians(since: SystemTime, order: &[String]) -> Option<Vec<(String, Vec<f64>)>> {
     let mut found = Vec::new();
     let mut stack = vec![criterion_home()];
     while let Some(dir) = stack.pop() {

@@ -1,9 +1,22 @@
 //! A benchmark sitting kept in the repository: with `RASTERLAB_RECORD=1` a bench
 //! writes its medians to `docs/bench/NAME-BUILD.tsv`, which the pages' generated
-//! blocks are made from and `tests/quoted.rs` holds them to. `benches/sitting.sh`
+//! blocks are made from and `tests/benched.rs` holds them to. `benches/sitting.sh`
 //! runs the whole sitting, both builds.
 
+use rasterlab::app::Settings;
 use std::path::Path;
+
+/// The handout's view at `size`, the focal length the image's height (500 at
+/// 500x500, as the handout's figures).
+pub fn settings(size: (u32, u32)) -> Settings {
+    Settings {
+        camera: rasterlab::Camera {
+            focal: size.1 as f32,
+            ..rasterlab::Camera::handout(size.0, size.1)
+        },
+        ..Settings::default()
+    }
+}
 
 /// Which build this is: "native" when compiled with AVX2 (`-C target-cpu=native`
 /// here), "default" for the x86-64 baseline.

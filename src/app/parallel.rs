@@ -140,6 +140,11 @@ impl Parallel {
     /// triangles crowd one part of the image.
     fn balance(&mut self, camera: &Camera) {
         let (n, height) = (self.pipelines.len(), camera.height as usize);
+        self.ends.clear();
+        if n == 1 {
+            self.ends.push(camera.height);
+            return;
+        }
         self.work.clear();
         self.work.resize(height, camera.width as u64);
         let centre = camera.height as f32 / 2.0;
@@ -148,7 +153,6 @@ impl Parallel {
             self.work[row] += VERTEX_COST;
         }
         let total: u64 = self.work.iter().sum();
-        self.ends.clear();
         let (mut done, mut row) = (0u64, 0usize);
         for band in 1..n {
             let share = total * band as u64 / n as u64;

@@ -556,7 +556,6 @@ struct View {
     view_tests: bool,
 }
 
-/// Where a whole mesh lies, found once per frame from its bounding box.
 impl View {
     fn new(camera: &Camera, target: &Target, lines: Lines) -> Self {
         let rect = camera.screen_rect();
@@ -586,9 +585,14 @@ impl View {
     }
 }
 
+/// Where a whole mesh lies, found once per frame from its vertices. A triangle
+/// lies within its corners' projections (all in front of the camera), so when
+/// the whole mesh fits, no triangle needs a cut or a view test.
 #[derive(Clone, Copy, Default)]
 struct Fit {
+    /// Every point is in front of the near plane (or there is none).
     in_front: bool,
+    /// Every point projects inside the screen, so no triangle needs a view test.
     inside: bool,
 }
 

@@ -35,20 +35,8 @@ impl Target<'_> {
     pub fn split_at_row(self, row: u32) -> (Self, Self) {
         let row = row.clamp(self.rows.start, self.rows.end);
         let pixels = ((row - self.rows.start) * self.width) as usize;
-        let (color_top, color_bottom) = match self.color {
-            Some(c) => {
-                let (a, b) = c.split_at_mut(pixels);
-                (Some(a), Some(b))
-            }
-            None => (None, None),
-        };
-        let (depth_top, depth_bottom) = match self.depth {
-            Some(d) => {
-                let (a, b) = d.split_at_mut(pixels);
-                (Some(a), Some(b))
-            }
-            None => (None, None),
-        };
+        let (color_top, color_bottom) = split(self.color, pixels);
+        let (depth_top, depth_bottom) = split(self.depth, pixels);
         let (width, height) = (self.width, self.height);
         let top = Target {
             width,
@@ -71,6 +59,14 @@ impl Target<'_> {
     #[inline]
     pub fn index(&self, x: i32, y: i32) -> usize {
         (y as u32 - self.rows.start) as usize * self.width as usize + x as usize
+    }
+}
+
+/// A buffer, if there is one, cut in two at index `at`.
+fn split<T>(buffer: Option<&mut [T]>, at: usize) -> (Option<&mut [T]>, Option<&mut [T]>) {
+    match buffer.map(|b| b.split_at_mut(at)) {
+        Some((a, b)) => (Some(a), Some(b)),
+        None => (None, None),
     }
 }
 
@@ -117,33 +113,6 @@ impl Frame {
             color: Some(&mut self.color),
             depth: (!self.depth.is_empty()).then_some(&mut self.depth[..]),
         }
-    }
-
-    /// The image as `n` render targets over consecutive bands of rows (at most `n`,
-    /// none empty), so each can be drawn on its own, on its own thread.
-    pub fn bands(&mut self, n: usize) -> Vec<Target<'_>> {
-        let rows = self.height.div_ceil(n.max(1) as u32).max(1);
-        let ends: Vec<u32> = (1..=n.max(1) as u32)
-            .map(|i| (i * rows).min(self.height))
-            .collect();
-        self.bands_ending(&ends)
-    }
-
-    /// The image as render targets over consecutive bands of rows, the band `i`
-    /// ending before row `ends[i]`; an end that does not pass the one before it
-    /// gives no band, and the last band reaches the image's bottom.
-    pub fn bands_ending(&mut self, ends: &[u32]) -> Vec<Target<'_>> {
-        let mut bands = Vec::with_capacity(ends.len());
-        let mut rest = self.target();
-        for &end in &ends[..ends.len().saturating_sub(1)] {
-            if end > rest.rows.start && end < rest.rows.end {
-                let (band, below) = rest.split_at_row(end);
-                bands.push(band);
-                rest = below;
-            }
-        }
-        bands.push(rest);
-        bands
     }
 
     /// The colour at (x, y) as 8-bit RGB.
@@ -267,7 +236,9 @@ mod tests {
     fn bands_cover_the_image_once() {
         let mut f = Frame::new(4, 10);
         f.resize(4, 10, true);
-        let bands = f.bands(3);
+        let (top, rest) = f.target().split_at_row(4);
+        let (middle, bottom) = rest.split_at_row(8);
+        let bands = [top, middle, bottom];
         let rows: Vec<_> = bands.iter().map(|b| b.rows.clone()).collect();
         assert_eq!(rows, [0..4, 4..8, 8..10]);
         let sizes: Vec<_> = bands
@@ -278,7 +249,9 @@ mod tests {
         assert!(bands
             .iter()
             .all(|b| b.depth.as_ref().unwrap().len() == b.color.as_ref().unwrap().len()));
-        assert_eq!(f.bands(40).len(), 10, "no empty band");
+        // A cut beyond the band is kept within it: the part past it is empty.
+        let (all, none) = f.target().split_at_row(40);
+        assert_eq!((all.rows, none.rows), (0..10, 10..10));
     }
 
     #[test]
