@@ -6,7 +6,7 @@
 use crate::app::figure::{Figure, Inputs, Render};
 use crate::extensions::normal_map::TangentFrame;
 use crate::extensions::texture::Model;
-use crate::pipeline::draw::{Stats, Vertices};
+use crate::pipeline::draw::{Projected, Stats, Vertices};
 use crate::pipeline::{Camera, Frame, Mesh, Target};
 
 /// A figure drawn in `threads` bands.
@@ -148,7 +148,7 @@ impl Parallel {
         self.work.clear();
         self.work.resize(height, camera.width as u64);
         let centre = camera.height as f32 / 2.0;
-        for &y in self.vertices.screen_y() {
+        for &Projected { y, .. } in self.vertices.screen() {
             let row = ((y + centre).max(0.0) as usize).min(height.saturating_sub(1));
             self.work[row] += VERTEX_COST;
         }

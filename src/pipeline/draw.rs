@@ -10,7 +10,7 @@ use super::clip::{
 };
 use super::interpolate::{Interpolation, Perspective, Pixel, Varying};
 use super::mesh::Mesh;
-use super::raster::{Bounds, Lines, Rasterizer, RowRaster, Viewport};
+use super::raster::{Bounds, Lines, Placed, Rasterizer, RowRaster, Viewport};
 use super::stage::{Primitive, Stage, Surface};
 use super::target::{pack, Frame, Target};
 use glam::Vec3;
@@ -40,6 +40,9 @@ pub struct Pipeline<V: Varying, I: Interpolation = Perspective, R: Rasterizer = 
     /// The mesh's vertices as this frame sees them, when [`Pipeline::draw`]
     /// prepares them itself.
     vertices: Vertices,
+    /// Each vertex as the rasterizer places it ([`Rasterizer::place`]), when the
+    /// mesh is in full view.
+    places: Vec<R::Place>,
     visible: Visible<V>,
     stats: Stats,
     interpolation: PhantomData<I>,
@@ -125,6 +128,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Default for Pipeline<V, I, R> 
             raster: R::default(),
             scratch: Default::default(),
             vertices: Vertices::default(),
+            places: Vec::new(),
             visible: Visible {
                 index: Vec::new(),
                 carried: Vec::new(),
@@ -211,7 +215,6 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         if fit.in_front {
             view.near = None; // nothing to cut: no test per triangle
         }
-        view.view_tests = !fit.inside;
         // Chosen once per frame, so that no loop over faces or pixels tests it.
         match self.batch_shading {
             true => self.draw_faces::<S, true>(stage, mesh, camera, &view, vertices, target),
@@ -220,7 +223,10 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
     }
 
     /// Every face of `mesh`: culled, through the vertex shader, then drawn as
-    /// the stage's primitive.
+    /// the stage's primitive. A mesh in full view has nothing to cut or test, so
+    /// its vertices are placed for the rasterizer once per frame
+    /// ([`Rasterizer::place`]) and each triangle goes to it straight; otherwise
+    /// each face goes through [`Pipeline::draw_polygon`]'s cuts.
     fn draw_faces<S: Stage<Varying = V>, const BATCH: bool>(
         &mut self,
         stage: &S,
@@ -242,8 +248,17 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
             (rows.end + 2) as f32 - centre,
         );
         let whole = rows.start == 0 && rows.end >= camera.height as i32;
-        let pass_over =
-            S::PRIMITIVE == Primitive::Polygons && !whole && !vertices.screen_y.is_empty();
+        // The whole mesh in view: every vertex was projected once for the frame.
+        let screen = vertices.screen();
+        let in_view = S::PRIMITIVE == Primitive::Polygons && !screen.is_empty();
+        let pass_over = in_view && !whole;
+        // Taken out of `self` while the faces are drawn, and put back for the next frame.
+        let mut places = std::mem::take(&mut self.places);
+        places.clear();
+        if in_view {
+            let v = &view.viewport;
+            places.extend(screen.iter().map(|s| self.raster.place(s.x, s.y, v)));
+        }
         for (index, face) in mesh.faces.iter().enumerate() {
             if self.cull != Cull::None {
                 let v0 = mesh.positions[face.vertices[0] as usize];
@@ -259,7 +274,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
                 }
             }
             if pass_over {
-                let [a, b, c] = face.vertices.map(|v| vertices.screen_y[v as usize]);
+                let [a, b, c] = face.vertices.map(|v| screen[v as usize].y);
                 if a.max(b).max(c) < top || a.min(b).min(c) > bottom {
                     // In full view it is drawn, by the band its rows are in.
                     self.stats.drawn += 1;
@@ -272,6 +287,23 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
                 face: index as u32,
                 material: face.material,
             };
+            if in_view {
+                // Nothing to cut or test: the corners as placed, straight to the
+                // rasterizer.
+                let corners = [0, 1, 2].map(|k| {
+                    let v = face.vertices[k] as usize;
+                    let zinv = screen[v].zinv;
+                    let varying = stage.vertex_shader(&mesh.vertex(face, k), &surface);
+                    Placed {
+                        place: places[v],
+                        zinv,
+                        varying: I::encode(zinv, varying),
+                    }
+                });
+                self.stats.drawn += 1;
+                self.fill::<S, BATCH>(stage, view, corners, &surface, target);
+                continue;
+            }
             let corners = [0, 1, 2].map(|k| CameraVertex {
                 position: camera_space[face.vertices[k] as usize],
                 varying: stage.vertex_shader(&mesh.vertex(face, k), &surface),
@@ -290,10 +322,12 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
                 }
             }
         }
+        self.places = places;
     }
 
-    /// The handout's `DrawPolygon`: clip, project, rasterize, then the depth test
-    /// and the pixel shader.
+    /// The handout's `DrawPolygon` for a face of a mesh not wholly in view: clip,
+    /// project, test against the screen, rasterize, then the depth test and the
+    /// pixel shader.
     fn draw_polygon<S: Stage<Varying = V>, const BATCH: bool>(
         &mut self,
         stage: &S,
@@ -305,49 +339,42 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         let near_cut = view
             .near
             .is_some_and(|n| corners.iter().any(|c| !in_front(c, n)));
-        if !near_cut && !view.view_tests {
-            // The common case, a triangle in full view: three corners straight to
-            // the rasterizer, with no polygon to copy them through.
-            let mut projected = [ScreenVertex::default(); 3];
-            if !project_each::<_, I>(&view.projection, corners, |k, s| projected[k] = s) {
-                return;
-            }
-            self.stats.drawn += 1;
-            return self.fill::<S, BATCH>(stage, view, &projected, surface, target);
-        }
         let mut polygon = Polygon::from_slice(corners);
         let mut clipped = near_cut;
         if near_cut {
             polygon = clip_near(&polygon, view.near.unwrap_or_default());
         }
         let mut projected = Polygon::default();
-        if !project_each::<_, I>(&view.projection, polygon.as_slice(), |_, s| {
-            projected.push(s)
-        }) {
+        for &c in polygon.as_slice() {
+            // On the camera plane (possible only without clipping): nothing to draw.
+            let Some(s) = project::<_, I>(&view.projection, c) else {
+                return;
+            };
+            projected.push(s);
+        }
+        if projected.is_empty() || off_screen(projected.as_slice(), &view.rect) {
+            self.stats.outside += 1;
             return;
         }
-        if view.view_tests {
-            if projected.is_empty() || off_screen(projected.as_slice(), &view.rect) {
-                self.stats.outside += 1;
-                return;
-            }
-            if !projected.as_slice().iter().all(|s| view.band.contains(s)) {
-                projected = clip_rect(&projected, &view.band);
-                clipped = true;
-            }
+        if !projected.as_slice().iter().all(|s| view.band.contains(s)) {
+            projected = clip_rect(&projected, &view.band);
+            clipped = true;
         }
         self.stats.clipped += clipped as u64;
         self.stats.drawn += 1;
-        self.fill::<S, BATCH>(stage, view, projected.as_slice(), surface, target);
+        let corners = projected.as_slice();
+        self.fill::<S, BATCH>(stage, view, corners, surface, target);
     }
 
     /// The projected polygon rasterized, each pixel through the depth test and the
-    /// pixel shader.
+    /// pixel shader. Kept out of the loop over faces, whose values would otherwise
+    /// crowd the pixel loop's registers.
+    #[inline(never)]
     fn fill<S: Stage<Varying = V>, const BATCH: bool>(
         &mut self,
         stage: &S,
         view: &View,
-        projected: &[ScreenVertex<V>],
+        corners: impl Corners<V, R>,
         surface: &Surface,
         target: &mut Target,
     ) {
@@ -361,25 +388,25 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         // Counted where it is cheap: rejections are the rare branch, and a batch
         // counts its own pixels.
         let (mut rejected, mut written) = (0u64, 0u64);
-        self.raster
-            .polygon(&mut self.scratch, projected, &view.viewport, |p| {
-                let i = (p.y as usize - first_row) * width + p.x as usize;
-                if !depth_test::<S>(depth_buffer, i, p.zinv) {
-                    rejected += 1;
-                    return;
+        let plot = |p: Pixel<V>| {
+            let i = (p.y as usize - first_row) * width + p.x as usize;
+            if !depth_test::<S>(depth_buffer, i, p.zinv) {
+                rejected += 1;
+                return;
+            }
+            if BATCH {
+                // Shaded below, the whole triangle's visible pixels at once.
+                visible.index.push(i);
+                visible.carried.push((p.zinv, p.varying));
+            } else {
+                written += 1;
+                if let Some(color) = color.as_deref_mut() {
+                    let varying = I::decode(p.zinv, p.varying);
+                    color[i] = pack(stage.pixel_shader(&varying, surface));
                 }
-                if BATCH {
-                    // Shaded below, the whole triangle's visible pixels at once.
-                    visible.index.push(i);
-                    visible.carried.push((p.zinv, p.varying));
-                } else {
-                    written += 1;
-                    if let Some(color) = color.as_deref_mut() {
-                        let varying = I::decode(p.zinv, p.varying);
-                        color[i] = pack(stage.pixel_shader(&varying, surface));
-                    }
-                }
-            });
+            }
+        };
+        corners.cover(&self.raster, &mut self.scratch, &view.viewport, plot);
         if BATCH {
             written = visible.index.len() as u64;
         }
@@ -449,24 +476,49 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
     }
 }
 
+/// A polygon's corners as the rasterizer is handed them: projected (and
+/// clipped), or a triangle in full view whose vertices it placed once per frame.
+/// A trait, not an enum, so that each kind has its own pixel loop.
+trait Corners<V: Varying, R: Rasterizer> {
+    fn cover(
+        self,
+        raster: &R,
+        scratch: &mut R::Scratch<V>,
+        viewport: &Viewport,
+        plot: impl FnMut(Pixel<V>),
+    );
+}
+
+impl<V: Varying, R: Rasterizer> Corners<V, R> for &[ScreenVertex<V>] {
+    #[inline]
+    fn cover(
+        self,
+        raster: &R,
+        scratch: &mut R::Scratch<V>,
+        viewport: &Viewport,
+        plot: impl FnMut(Pixel<V>),
+    ) {
+        raster.polygon(scratch, self, viewport, plot)
+    }
+}
+
+impl<V: Varying, R: Rasterizer> Corners<V, R> for [Placed<R::Place, V>; 3] {
+    #[inline]
+    fn cover(
+        self,
+        raster: &R,
+        scratch: &mut R::Scratch<V>,
+        viewport: &Viewport,
+        plot: impl FnMut(Pixel<V>),
+    ) {
+        raster.triangle(scratch, self, viewport, plot)
+    }
+}
+
 /// Whether a vertex is at or beyond the near plane `z = near` (false for NaN).
 #[inline]
 fn in_front<V>(c: &CameraVertex<V>, near: f32) -> bool {
     c.position.z >= near
-}
-
-/// Every corner projected and handed to `put` with its index; false, and nothing
-/// to draw, when one lies on the camera plane (possible only without clipping).
-#[inline]
-fn project_each<V: Varying, I: Interpolation>(
-    projection: &Projection,
-    corners: &[CameraVertex<V>],
-    mut put: impl FnMut(usize, ScreenVertex<V>),
-) -> bool {
-    corners
-        .iter()
-        .enumerate()
-        .all(|(k, &c)| project::<_, I>(projection, c).map(|s| put(k, s)).is_some())
 }
 
 /// The projection part of the handout's `VertexShader`: eq. 3 and 4 (relative to
@@ -552,8 +604,6 @@ struct View {
     rect: Rect,
     band: Rect,
     viewport: Viewport,
-    /// Whether triangles are tested against the screen and the guard band.
-    view_tests: bool,
 }
 
 impl View {
@@ -570,7 +620,6 @@ impl View {
                 right: rect.right + g,
                 bottom: rect.bottom + g,
             },
-            view_tests: true,
             viewport: Viewport {
                 half_width: (camera.width / 2) as i32,
                 half_height: (camera.height / 2) as i32,
@@ -602,18 +651,26 @@ struct Fit {
 #[derive(Default)]
 pub struct Vertices {
     camera_space: Vec<Vec3>,
-    /// Each vertex's projected y (eq. 4, from the screen's centre) when the whole
-    /// mesh is in view; empty otherwise.
-    screen_y: Vec<f32>,
+    /// Each vertex projected (eq. 3 and 4, from the screen's centre, and 1/z)
+    /// when the whole mesh is in view, so that a corner shared by many faces is
+    /// projected once; empty otherwise.
+    screen: Vec<Projected>,
     fit: Fit,
 }
 
+/// A vertex projected: x and y from the screen's centre (eq. 3, 4), and 1/z.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Projected {
+    pub x: f32,
+    pub y: f32,
+    pub zinv: f32,
+}
+
 impl Vertices {
-    /// Each vertex's projected y, from the screen's centre (eq. 4), when the
-    /// whole mesh is in view, so that a caller can see where the triangles are;
-    /// empty otherwise.
-    pub fn screen_y(&self) -> &[f32] {
-        &self.screen_y
+    /// Every vertex projected, when the whole mesh is in view, so that a caller
+    /// can see where the triangles are; empty otherwise.
+    pub fn screen(&self) -> &[Projected] {
+        &self.screen
     }
 
     /// Takes every vertex of `mesh` to `camera`'s space and looks at where they
@@ -628,13 +685,13 @@ impl Vertices {
             in_front: true,
             inside: true,
         };
-        self.screen_y.clear();
+        self.screen.clear();
         for &c in &self.camera_space {
             let in_front = c.z >= near.unwrap_or(f32::MIN_POSITIVE) && c.z.is_finite();
             fit.in_front &= in_front;
             let on_screen = in_front
-                && projection.project_centred(c).is_some_and(|(x, y, _)| {
-                    self.screen_y.push(y);
+                && projection.project_centred(c).is_some_and(|(x, y, zinv)| {
+                    self.screen.push(Projected { x, y, zinv });
                     (rect.left..=rect.right).contains(&x) && (rect.top..=rect.bottom).contains(&y)
                 });
             fit.inside &= on_screen;
@@ -644,7 +701,7 @@ impl Vertices {
         }
         fit.in_front |= near.is_none();
         if !(fit.inside && fit.in_front) {
-            self.screen_y.clear();
+            self.screen.clear();
         }
         self.fit = fit;
     }
@@ -654,6 +711,7 @@ impl Vertices {
 mod tests {
     use super::*;
     use crate::pipeline::mesh::face_normal;
+    use crate::pipeline::raster::EdgeRaster;
     use crate::pipeline::stage::{Depth, PixelLight};
     use crate::pipeline::{Affine, Light, Perspective};
 
@@ -704,6 +762,58 @@ mod tests {
         // The rows rasterizer samples each pixel where its truncated corner puts
         // it, up to 1.5 pixels from (x, y): here at most 2 steps of 255.
         assert!(worst <= 2, "largest difference {worst}");
+    }
+
+    #[test]
+    fn placing_each_vertex_once_draws_what_projecting_each_corner_draws() {
+        // Random small and large triangles in full view, drawn twice: as they are
+        // (every vertex placed once per frame), and with one more vertex, used by
+        // no face, behind the camera, so that no vertex is placed ahead and each
+        // corner is projected and placed for its face. Same bytes, both
+        // rasterizers, depth and light per pixel.
+        let (_, camera) = wall();
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 40) as f32 / (1u64 << 24) as f32
+        };
+        let mut mesh = Mesh::default();
+        for k in 0..400 {
+            // Within 0.8 of the axis at z >= 2: inside the 100-pixel screen.
+            let size = if k % 10 == 0 { 1.0 } else { 0.08 };
+            let mut at = || next() * (1.6 - size) - 0.8;
+            let (x, y, z) = (at(), at(), 2.0 + next());
+            let corners = [0, 1, 2]
+                .map(|_| Vec3::new(x + size * next(), y + size * next(), z + 0.3 * next()));
+            let color = Vec3::new(next(), next(), next());
+            mesh.push_triangle(corners, face_normal(corners), color);
+        }
+        let mut stray = mesh.clone();
+        stray.positions.push(Vec3::new(0.0, 0.0, -5.0));
+        fn draw<S: Stage, R: Rasterizer>(stage: &S, mesh: &Mesh, camera: &Camera) -> Frame {
+            let mut frame = Frame::default();
+            Pipeline::<S::Varying, Perspective, R>::new().render(stage, mesh, camera, &mut frame);
+            frame
+        }
+        fn same<S: Stage>(stage: &S, mesh: &Mesh, stray: &Mesh, camera: &Camera) {
+            let placed = draw::<S, RowRaster>(stage, mesh, camera);
+            assert!(placed.depth.iter().filter(|&&d| d > 0.0).count() > 2000);
+            assert_eq!(placed, draw::<S, RowRaster>(stage, stray, camera));
+            let placed = draw::<S, EdgeRaster>(stage, mesh, camera);
+            assert_eq!(placed, draw::<S, EdgeRaster>(stage, stray, camera));
+        }
+        same(&Depth, &mesh, &stray, &camera);
+        let light = Light::handout();
+        same(&PixelLight { light }, &mesh, &stray, &camera);
+        // The two paths were taken.
+        let mut pipeline = Pipeline::<_, Perspective>::new();
+        let mut frame = Frame::default();
+        pipeline.render(&Depth, &mesh, &camera, &mut frame);
+        assert!(pipeline.stats().view_tests_skipped);
+        pipeline.render(&Depth, &stray, &camera, &mut frame);
+        assert!(!pipeline.stats().view_tests_skipped);
     }
 
     #[test]

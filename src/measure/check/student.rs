@@ -12,7 +12,7 @@ use crate::pipeline::clip::{ScreenVertex, MAX_CORNERS};
 use crate::pipeline::interpolate::{Nothing, Pixel, Varying};
 use crate::pipeline::mesh::Vertex;
 use crate::pipeline::raster::rows::{compute_polygon_rows_by, draw_polygon_rows, Rows};
-use crate::pipeline::raster::{Rasterizer, Viewport};
+use crate::pipeline::raster::{Placed, Rasterizer, Viewport};
 use crate::pipeline::stage::{Primitive, Stage, Surface};
 use crate::pipeline::Light;
 use glam::Vec3;
@@ -118,6 +118,29 @@ impl Rasterizer for StudentRaster {
         }
         compute_polygon_rows_by(&g.walk, &pixels[..corners.len()], &viewport.bounds, rows);
         draw_polygon_rows(rows, &viewport.bounds, plot);
+    }
+
+    /// Left unplaced: a student's placing may also change 1/z.
+    type Place = (f32, f32);
+
+    fn place(&self, x: f32, y: f32, _: &Viewport) -> (f32, f32) {
+        (x, y)
+    }
+
+    fn triangle<V: Varying>(
+        &self,
+        rows: &mut Rows<V>,
+        corners: [Placed<(f32, f32), V>; 3],
+        viewport: &Viewport,
+        plot: impl FnMut(Pixel<V>),
+    ) {
+        let corners = corners.map(|c| ScreenVertex {
+            x: c.place.0,
+            y: c.place.1,
+            zinv: c.zinv,
+            varying: c.varying,
+        });
+        self.polygon(rows, &corners, viewport, plot)
     }
 }
 

@@ -14,7 +14,7 @@
 //!   handout's `Interpolate`.
 
 use super::rows::draw_line_by;
-use super::{Rasterizer, Viewport};
+use super::{Placed, Rasterizer, Viewport};
 use crate::pipeline::clip::ScreenVertex;
 use crate::pipeline::interpolate::{Pixel, Varying};
 
@@ -38,17 +38,17 @@ struct Snapped<V> {
     varying: V,
 }
 
-/// The vertex's position in image pixels, unrounded: `f X/Z + W/2`.
+/// A position from the screen's centre in image pixels, unrounded: `f X/Z + W/2`.
 #[inline]
-fn image_position<V>(s: &ScreenVertex<V>, viewport: &Viewport) -> (f32, f32) {
-    (s.x + viewport.centre.0, s.y + viewport.centre.1)
+fn image_position(x: f32, y: f32, viewport: &Viewport) -> (f32, f32) {
+    (x + viewport.centre.0, y + viewport.centre.1)
 }
 
 fn snap<V: Copy>(s: &ScreenVertex<V>, viewport: &Viewport) -> Snapped<V> {
-    let (x, y) = image_position(s, viewport);
+    let (x, y) = EdgeRaster.place(s.x, s.y, viewport);
     Snapped {
-        x: round_to_i64(x * SUBPIXEL as f32),
-        y: round_to_i64(y * SUBPIXEL as f32),
+        x,
+        y,
         zinv: s.zinv,
         varying: s.varying,
     }
@@ -68,7 +68,7 @@ fn round_to_i64(v: f32) -> i64 {
 
 /// The pixel a point lands on: the one containing it.
 fn point_pixel<V>(s: ScreenVertex<V>, viewport: &Viewport) -> Pixel<V> {
-    let (x, y) = image_position(&s, viewport);
+    let (x, y) = image_position(s.x, s.y, viewport);
     Pixel {
         x: x.floor() as i32,
         y: y.floor() as i32,
@@ -248,6 +248,34 @@ impl Rasterizer for EdgeRaster {
             let tri = [first, snap(&pair[0], viewport), snap(&pair[1], viewport)];
             triangle(tri, viewport, SMALL_SPAN, &mut plot);
         }
+    }
+
+    type Place = (i64, i64);
+
+    /// On the sub-pixel grid: `f X/Z + W/2` in 1/256 pixels, rounded.
+    #[inline]
+    fn place(&self, x: f32, y: f32, viewport: &Viewport) -> (i64, i64) {
+        let (x, y) = image_position(x, y, viewport);
+        (
+            round_to_i64(x * SUBPIXEL as f32),
+            round_to_i64(y * SUBPIXEL as f32),
+        )
+    }
+
+    fn triangle<V: Varying>(
+        &self,
+        _: &mut (),
+        corners: [Placed<(i64, i64), V>; 3],
+        viewport: &Viewport,
+        mut plot: impl FnMut(Pixel<V>),
+    ) {
+        let corners = corners.map(|c| Snapped {
+            x: c.place.0,
+            y: c.place.1,
+            zinv: c.zinv,
+            varying: c.varying,
+        });
+        triangle(corners, viewport, SMALL_SPAN, &mut plot);
     }
 }
 

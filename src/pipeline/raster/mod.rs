@@ -88,4 +88,29 @@ pub trait Rasterizer: Copy + Default + Send + 'static {
         viewport: &Viewport,
         plot: impl FnMut(Pixel<V>),
     );
+
+    /// Where a projected position (from the screen's centre) lands for this
+    /// rasterizer: the handout's truncated pixel, the exact rasterizer's point on
+    /// its sub-pixel grid. The pipeline places each vertex of a mesh in full view
+    /// once per frame, however many faces share it.
+    type Place: Copy + Default + Send;
+    fn place(&self, x: f32, y: f32, viewport: &Viewport) -> Self::Place;
+
+    /// [`Rasterizer::polygon`] for a triangle whose corners are placed already.
+    fn triangle<V: Varying>(
+        &self,
+        scratch: &mut Self::Scratch<V>,
+        corners: [Placed<Self::Place, V>; 3],
+        viewport: &Viewport,
+        plot: impl FnMut(Pixel<V>),
+    );
+}
+
+/// A corner as a rasterizer placed it ([`Rasterizer::place`]), with its 1/z and
+/// what it carries.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Placed<P, V> {
+    pub place: P,
+    pub zinv: f32,
+    pub varying: V,
 }

@@ -5,7 +5,7 @@
 //! in `super::bresenham`), or in `rasterlab check` a student's.
 
 use super::bresenham::bresenham;
-use super::{Bounds, Rasterizer, Viewport};
+use super::{Bounds, Placed, Rasterizer, Viewport};
 use crate::pipeline::clip::ScreenVertex;
 use crate::pipeline::interpolate::{
     line_pixels, Pixel, RunningSum, Steps, Varying, RUNNING_SUM_LIMIT,
@@ -20,9 +20,10 @@ pub struct RowRaster;
 /// pipeline only passes vertices inside the guard band, far inside `i32`.
 #[inline]
 pub fn to_pixel<V>(s: ScreenVertex<V>, viewport: &Viewport) -> Pixel<V> {
+    let (x, y) = RowRaster.place(s.x, s.y, viewport);
     Pixel {
-        x: s.x as i32 + viewport.half_width,
-        y: s.y as i32 + viewport.half_height,
+        x,
+        y,
         zinv: s.zinv,
         varying: s.varying,
     }
@@ -67,6 +68,33 @@ impl Rasterizer for RowRaster {
         }
         let corners = &pixels[..corners.len()];
         compute_polygon_rows_by(&viewport.lines, corners, &viewport.bounds, rows);
+        draw_polygon_rows(rows, &viewport.bounds, plot);
+    }
+
+    type Place = (i32, i32);
+
+    #[inline]
+    fn place(&self, x: f32, y: f32, viewport: &Viewport) -> (i32, i32) {
+        (
+            x as i32 + viewport.half_width,
+            y as i32 + viewport.half_height,
+        )
+    }
+
+    fn triangle<V: Varying>(
+        &self,
+        rows: &mut Rows<V>,
+        corners: [Placed<(i32, i32), V>; 3],
+        viewport: &Viewport,
+        plot: impl FnMut(Pixel<V>),
+    ) {
+        let corners = corners.map(|c| Pixel {
+            x: c.place.0,
+            y: c.place.1,
+            zinv: c.zinv,
+            varying: c.varying,
+        });
+        compute_polygon_rows_by(&viewport.lines, &corners, &viewport.bounds, rows);
         draw_polygon_rows(rows, &viewport.bounds, plot);
     }
 }
