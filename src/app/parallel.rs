@@ -6,7 +6,7 @@
 use crate::app::figure::{Figure, Inputs, Render};
 use crate::extensions::normal_map::TangentFrame;
 use crate::extensions::texture::Model;
-use crate::pipeline::draw::{Projected, Stats, Vertices};
+use crate::pipeline::draw::{Join, Projected, Stats, Vertices};
 use crate::pipeline::{Camera, Frame, Mesh, Target};
 
 /// A figure drawn in `threads` bands.
@@ -62,10 +62,22 @@ fn draw_bands(pipelines: &mut [Box<dyn Render>], ends: &[u32], target: Target, s
     }
 }
 
+/// Work split between the pool's threads.
+struct Rayon;
+
+impl Join for Rayon {
+    fn join<A: FnOnce() + Send, B: FnOnce() + Send>(&self, a: A, b: B) {
+        rayon::join(a, b);
+    }
+}
+
 /// What setting up the triangles around one vertex costs, in pixels filled:
 /// a mesh of small triangles is split into bands by its vertices, a few large
 /// ones by their pixels.
 const VERTEX_COST: u64 = 64;
+
+/// About how many vertices [`Parallel::balance`] looks at.
+const VERTEX_SAMPLE: usize = 1 << 16;
 
 /// The number of cores, the default `--threads`.
 pub fn cores() -> usize {
@@ -105,7 +117,11 @@ impl Parallel {
     /// thread, each with the stage made from `inputs` (and the faces' tangent
     /// frames, which this keeps).
     pub fn render(&mut self, inputs: &Inputs, mesh: &Mesh, camera: &Camera, frame: &mut Frame) {
-        self.vertices.prepare(mesh, camera);
+        let vertices = &mut self.vertices;
+        match &self.pool {
+            None => vertices.prepare(mesh, camera),
+            Some(pool) => pool.install(|| vertices.prepare_split(mesh, camera, &Rayon)),
+        }
         self.balance(camera);
         let inputs = &Inputs {
             frames: &self.frames,
@@ -147,10 +163,13 @@ impl Parallel {
         }
         self.work.clear();
         self.work.resize(height, camera.width as u64);
-        let centre = camera.height as f32 / 2.0;
-        for &Projected { y, .. } in self.vertices.screen() {
+        // A sample of the vertices is enough to see where they crowd.
+        let screen = self.vertices.screen();
+        let every = (screen.len() / VERTEX_SAMPLE).max(1);
+        let (centre, cost) = (camera.height as f32 / 2.0, VERTEX_COST * every as u64);
+        for &Projected { y, .. } in screen.iter().step_by(every) {
             let row = ((y + centre).max(0.0) as usize).min(height.saturating_sub(1));
-            self.work[row] += VERTEX_COST;
+            self.work[row] += cost;
         }
         let total: u64 = self.work.iter().sum();
         let (mut done, mut row) = (0u64, 0usize);

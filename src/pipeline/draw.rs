@@ -676,34 +676,95 @@ impl Vertices {
     /// Takes every vertex of `mesh` to `camera`'s space and looks at where they
     /// all lie; the buffers are kept for the next frame.
     pub fn prepare(&mut self, mesh: &Mesh, camera: &Camera) {
-        let projection = camera.projection();
-        self.camera_space.clear();
-        self.camera_space
-            .extend(mesh.positions.iter().map(|&p| projection.to_camera(p)));
-        let (near, rect) = (camera.near, camera.screen_rect());
-        let mut fit = Fit {
-            in_front: true,
-            inside: true,
-        };
-        self.screen.clear();
-        for &c in &self.camera_space {
-            let in_front = c.z >= near.unwrap_or(f32::MIN_POSITIVE) && c.z.is_finite();
-            fit.in_front &= in_front;
-            let on_screen = in_front
-                && projection.project_centred(c).is_some_and(|(x, y, zinv)| {
-                    self.screen.push(Projected { x, y, zinv });
-                    (rect.left..=rect.right).contains(&x) && (rect.top..=rect.bottom).contains(&y)
-                });
-            fit.inside &= on_screen;
-            if !fit.in_front && !fit.inside {
-                break;
-            }
-        }
-        fit.in_front |= near.is_none();
+        self.prepare_split(mesh, camera, &InTurn)
+    }
+
+    /// [`Vertices::prepare`], the work split in parts that `join` may run at
+    /// once.
+    pub fn prepare_split(&mut self, mesh: &Mesh, camera: &Camera, join: &impl Join) {
+        let n = mesh.positions.len();
+        self.camera_space.resize(n, Vec3::ZERO);
+        self.screen.resize(n, Projected::default());
+        let view = (camera.projection(), camera.near, camera.screen_rect());
+        let mut fit = place_all(
+            &mesh.positions,
+            &mut self.camera_space,
+            &mut self.screen,
+            &view,
+            join,
+        );
+        fit.in_front |= camera.near.is_none();
         if !(fit.inside && fit.in_front) {
             self.screen.clear();
         }
         self.fit = fit;
+    }
+}
+
+/// Vertices handed to one piece of work at a time when the work is split.
+const PART: usize = 1 << 15;
+
+/// Every point of `positions` in camera space and projected, and where they
+/// all lie (before the near plane is taken into account), in parts split by
+/// `join`.
+fn place_all(
+    positions: &[Vec3],
+    camera_space: &mut [Vec3],
+    screen: &mut [Projected],
+    view: &(Projection, Option<f32>, Rect),
+    join: &impl Join,
+) -> Fit {
+    if positions.len() > PART {
+        let half = positions.len() / 2;
+        let (p, q) = positions.split_at(half);
+        let (c, d) = camera_space.split_at_mut(half);
+        let (s, t) = screen.split_at_mut(half);
+        let (mut first, mut second) = (Fit::default(), Fit::default());
+        join.join(
+            || first = place_all(p, c, s, view, join),
+            || second = place_all(q, d, t, view, join),
+        );
+        return Fit {
+            in_front: first.in_front && second.in_front,
+            inside: first.inside && second.inside,
+        };
+    }
+    let (projection, near, rect) = view;
+    let mut fit = Fit {
+        in_front: true,
+        inside: true,
+    };
+    for ((&p, c), s) in positions.iter().zip(camera_space).zip(screen) {
+        *c = projection.to_camera(p);
+        if !fit.in_front && !fit.inside {
+            continue; // neither can hold: no need to project the rest
+        }
+        let in_front = c.z >= near.unwrap_or(f32::MIN_POSITIVE) && c.z.is_finite();
+        fit.in_front &= in_front;
+        let on_screen = in_front
+            && projection.project_centred(*c).is_some_and(|(x, y, zinv)| {
+                *s = Projected { x, y, zinv };
+                (rect.left..=rect.right).contains(&x) && (rect.top..=rect.bottom).contains(&y)
+            });
+        fit.inside &= on_screen;
+    }
+    fit
+}
+
+/// Two pieces of work that may run at once: `rayon::join` for the threads that
+/// draw bands, one after the other ([`InTurn`]) otherwise. The pipeline starts
+/// no threads of its own.
+pub trait Join: Sync {
+    fn join<A: FnOnce() + Send, B: FnOnce() + Send>(&self, a: A, b: B);
+}
+
+/// Work done on the calling thread, one piece after the other.
+pub struct InTurn;
+
+impl Join for InTurn {
+    fn join<A: FnOnce() + Send, B: FnOnce() + Send>(&self, a: A, b: B) {
+        a();
+        b();
     }
 }
 
@@ -814,6 +875,47 @@ mod tests {
         assert!(pipeline.stats().view_tests_skipped);
         pipeline.render(&Depth, &stray, &camera, &mut frame);
         assert!(!pipeline.stats().view_tests_skipped);
+    }
+
+    #[test]
+    fn vertices_prepared_in_parts_are_those_prepared_in_one() {
+        // More vertices than a part holds, in view and then partly behind the
+        // camera, prepared in one go and in parts run in the other order.
+        struct Backwards;
+        impl Join for Backwards {
+            fn join<A: FnOnce() + Send, B: FnOnce() + Send>(&self, a: A, b: B) {
+                b();
+                a();
+            }
+        }
+        let (_, camera) = wall();
+        let mut mesh = Mesh::default();
+        for k in 0..3 * PART / 2 {
+            let t = k as f32 / PART as f32;
+            let p = Vec3::new(t.sin() * 0.8, t.cos() * 0.8, 2.0 + t);
+            mesh.push_triangle(
+                [p, p + Vec3::X * 0.01, p + Vec3::Y * 0.01],
+                -Vec3::Z,
+                Vec3::ONE,
+            );
+        }
+        let seen = |mesh: &Mesh, split: bool| {
+            let mut v = Vertices::default();
+            match split {
+                false => v.prepare(mesh, &camera),
+                true => v.prepare_split(mesh, &camera, &Backwards),
+            }
+            let screen: Vec<_> = v.screen.iter().map(|s| [s.x, s.y, s.zinv]).collect();
+            (v.camera_space, screen, v.fit.in_front, v.fit.inside)
+        };
+        let whole = seen(&mesh, false);
+        assert_eq!(whole.1.len(), mesh.positions.len());
+        assert_eq!(seen(&mesh, true), whole);
+        let last = mesh.positions.len() - 1;
+        mesh.positions[last].z = -1.0;
+        let behind = seen(&mesh, false);
+        assert!(behind.1.is_empty() && !behind.2 && !behind.3);
+        assert_eq!(seen(&mesh, true), behind);
     }
 
     #[test]
