@@ -225,8 +225,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
     /// Every face of `mesh`: culled, through the vertex shader, then drawn as
     /// the stage's primitive. A mesh in full view has nothing to cut or test, so
     /// its vertices are placed for the rasterizer once per frame
-    /// ([`Rasterizer::place`]) and each triangle goes to it straight; otherwise
-    /// each face goes through [`Pipeline::draw_polygon`]'s cuts.
+    /// ([`Rasterizer::place`]), whichever faces share them.
     fn draw_faces<S: Stage<Varying = V>, const BATCH: bool>(
         &mut self,
         stage: &S,
@@ -287,59 +286,67 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
                 face: index as u32,
                 material: face.material,
             };
-            if in_view {
-                // Nothing to cut or test: the corners as placed, straight to the
-                // rasterizer.
-                let corners = [0, 1, 2].map(|k| {
-                    let v = face.vertices[k] as usize;
-                    let zinv = screen[v].zinv;
-                    let varying = stage.vertex_shader(&mesh.vertex(face, k), &surface);
-                    Placed {
-                        place: places[v],
-                        zinv,
-                        varying: I::encode(zinv, varying),
-                    }
-                });
-                self.stats.drawn += 1;
-                self.fill::<S, BATCH>(stage, view, corners, &surface, target);
-                continue;
-            }
-            let corners = [0, 1, 2].map(|k| CameraVertex {
-                position: camera_space[face.vertices[k] as usize],
-                varying: stage.vertex_shader(&mesh.vertex(face, k), &surface),
-            });
+            let varyings = [0, 1, 2].map(|k| stage.vertex_shader(&mesh.vertex(face, k), &surface));
+            let at = |k: usize| face.vertices[k] as usize;
+            let in_camera_space = || {
+                [0, 1, 2].map(|k| CameraVertex {
+                    position: camera_space[at(k)],
+                    varying: varyings[k],
+                })
+            };
             match S::PRIMITIVE {
                 Primitive::Points => {
                     self.stats.drawn += 1;
-                    self.draw_points(stage, view, &corners, &surface, target)
+                    self.draw_points(stage, view, &in_camera_space(), &surface, target)
                 }
                 Primitive::Lines => {
                     self.stats.drawn += 1;
-                    self.draw_edges(stage, view, &corners, &surface, target)
+                    self.draw_edges(stage, view, &in_camera_space(), &surface, target)
+                }
+                Primitive::Polygons if in_view => {
+                    let corners = [0, 1, 2].map(|k| {
+                        let zinv = screen[at(k)].zinv;
+                        Placed {
+                            place: places[at(k)],
+                            zinv,
+                            varying: I::encode(zinv, varyings[k]),
+                        }
+                    });
+                    let corners = FaceCorners::InView(corners);
+                    self.draw_polygon::<S, BATCH>(stage, view, corners, &surface, target)
                 }
                 Primitive::Polygons => {
-                    self.draw_polygon::<S, BATCH>(stage, view, &corners, &surface, target)
+                    let corners = FaceCorners::InCameraSpace(in_camera_space());
+                    self.draw_polygon::<S, BATCH>(stage, view, corners, &surface, target)
                 }
             }
         }
         self.places = places;
     }
 
-    /// The handout's `DrawPolygon` for a face of a mesh not wholly in view: clip,
-    /// project, test against the screen, rasterize, then the depth test and the
-    /// pixel shader.
+    /// The handout's `DrawPolygon`: a triangle of a mesh in full view goes to the
+    /// rasterizer as its corners were placed; any other is clipped at the near
+    /// plane, projected, tested against the screen and cut at the guard band
+    /// first. Then each pixel goes through the depth test and the pixel shader.
     fn draw_polygon<S: Stage<Varying = V>, const BATCH: bool>(
         &mut self,
         stage: &S,
         view: &View,
-        corners: &[CameraVertex<V>; 3],
+        corners: FaceCorners<V, R::Place>,
         surface: &Surface,
         target: &mut Target,
     ) {
+        let corners = match corners {
+            FaceCorners::InView(placed) => {
+                self.stats.drawn += 1;
+                return self.fill::<S, BATCH>(stage, view, placed, surface, target);
+            }
+            FaceCorners::InCameraSpace(corners) => corners,
+        };
         let near_cut = view
             .near
             .is_some_and(|n| corners.iter().any(|c| !in_front(c, n)));
-        let mut polygon = Polygon::from_slice(corners);
+        let mut polygon = Polygon::from_slice(&corners);
         let mut clipped = near_cut;
         if near_cut {
             polygon = clip_near(&polygon, view.near.unwrap_or_default());
@@ -474,6 +481,13 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
             });
         }
     }
+}
+
+/// A face's corners as `DrawPolygon` gets them: placed for the rasterizer (a
+/// mesh in full view), or in camera space, to be cut and projected.
+enum FaceCorners<V, P> {
+    InView([Placed<P, V>; 3]),
+    InCameraSpace([CameraVertex<V>; 3]),
 }
 
 /// A polygon's corners as the rasterizer is handed them: projected (and
