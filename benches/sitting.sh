@@ -43,7 +43,7 @@ benches() { # build: default or native
 view() {
     local label=$1
     shift
-    xvfb-run -a target/release/rasterlab view "$@" 2>&1 >/dev/null |
+    xvfb-run -a -s "-screen 0 1920x1200x24" target/release/rasterlab view "$@" 2>&1 >/dev/null |
         sed -nE "s/^view: [0-9]+ frames, frame time median ([0-9.]+) ms, draw median ([0-9.]+) ms$/$label\t\1\t\2/p"
 }
 
@@ -51,12 +51,14 @@ viewer() {
     cargo build --release
     local out=docs/bench/viewer-default.tsv.new
     {
-        echo "# commit $(git rev-parse --short=7 HEAD), $(date -u +%Y-%m-%d), default build, under Xvfb, pixel-light 500x500, threads: all cores"
+        echo "# commit $(git rev-parse --short=7 HEAD), $(date -u +%Y-%m-%d), default build, under Xvfb, pixel-light 500x500 unless the case says, threads: all cores"
         printf 'case\tframe_ms\tdraw_ms\n'
         for run in 1 2 3; do
             view "--fps 0, run $run" --fps 0 --frames 600
         done
         view "--fps 60" --frames 300
+        view "cornell:183 1920x1080 --raster edge, --fps 0" \
+            --scene cornell:183 --size 1920x1080 --raster edge --fps 0 --frames 300
     } >$out
     mv $out docs/bench/viewer-default.tsv
 }

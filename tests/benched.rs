@@ -493,11 +493,15 @@ impl Sitting {
         let fastest = free.iter().map(|(_, v)| v[0]).fold(f64::MAX, f64::min);
         let slowest = free.iter().map(|(_, v)| v[0]).fold(0.0, f64::max);
         let sixty = sheet.get("--fps 60");
+        let million = sheet.get("cornell:183 1920x1080 --raster edge, --fps 0");
         format!(
             "Under Xvfb on this 2-core machine, pixel-light at 500x500 with `--fps 0`, {} runs \
              of 600 frames: median frame time {} ms ({:.0} to {:.0} frames per second), of \
              which drawing {:.2} to {:.2} ms; the rest is handing the frame to X. With the \
-             default `--fps 60` the frame time is {:.2} ms (draw {:.2} ms).\n\n{}",
+             default `--fps 60` the frame time is {:.2} ms (draw {:.2} ms). A million \
+             triangles (`--scene cornell:183 --size 1920x1080 --raster edge`, pixel-light, \
+             `--fps 0`, 300 frames): median frame time {:.1} ms ({:.0} frames per second), \
+             of which drawing {:.1} ms.\n\n{}",
             free.len(),
             join_and(&frames),
             1000.0 / slowest,
@@ -506,6 +510,9 @@ impl Sitting {
             draw(f64::max, 0.0),
             sixty[0],
             sixty[1],
+            million[0],
+            1000.0 / million[0],
+            million[1],
             self.source(&["viewer-default"], "bash benches/sitting.sh viewer")
         )
     }
