@@ -6,7 +6,8 @@
 use crate::app::figure::{Figure, Inputs, Render};
 use crate::extensions::normal_map::TangentFrame;
 use crate::extensions::texture::Model;
-use crate::pipeline::draw::{Join, Projected, Stats, Vertices};
+use crate::pipeline::clip::ScreenVertex;
+use crate::pipeline::draw::{Join, Stats, Vertices};
 use crate::pipeline::{Camera, Frame, Mesh, Target};
 
 /// A figure drawn in `threads` bands.
@@ -167,7 +168,7 @@ impl Parallel {
         let screen = self.vertices.screen();
         let every = (screen.len() / VERTEX_SAMPLE).max(1);
         let (centre, cost) = (camera.height as f32 / 2.0, VERTEX_COST * every as u64);
-        for &Projected { y, .. } in screen.iter().step_by(every) {
+        for &ScreenVertex { y, .. } in screen.iter().step_by(every) {
             let row = ((y + centre).max(0.0) as usize).min(height.saturating_sub(1));
             self.work[row] += cost;
         }

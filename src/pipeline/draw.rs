@@ -8,7 +8,7 @@ use super::clip::{
     clip_near, clip_rect, clip_segment_near, clip_segment_rect, CameraVertex, Polygon, Rect,
     ScreenVertex,
 };
-use super::interpolate::{Interpolation, Perspective, Pixel, Varying};
+use super::interpolate::{Interpolation, Nothing, Perspective, Pixel, Varying};
 use super::mesh::Mesh;
 use super::raster::{Bounds, Lines, Placed, Rasterizer, RowRaster, Viewport};
 use super::stage::{Primitive, Stage, Surface};
@@ -668,22 +668,14 @@ pub struct Vertices {
     /// Each vertex projected (eq. 3 and 4, from the screen's centre, and 1/z)
     /// when the whole mesh is in view, so that a corner shared by many faces is
     /// projected once; empty otherwise.
-    screen: Vec<Projected>,
+    screen: Vec<ScreenVertex<Nothing>>,
     fit: Fit,
-}
-
-/// A vertex projected: x and y from the screen's centre (eq. 3, 4), and 1/z.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct Projected {
-    pub x: f32,
-    pub y: f32,
-    pub zinv: f32,
 }
 
 impl Vertices {
     /// Every vertex projected, when the whole mesh is in view, so that a caller
     /// can see where the triangles are; empty otherwise.
-    pub fn screen(&self) -> &[Projected] {
+    pub fn screen(&self) -> &[ScreenVertex<Nothing>] {
         &self.screen
     }
 
@@ -698,9 +690,9 @@ impl Vertices {
     pub fn prepare_split(&mut self, mesh: &Mesh, camera: &Camera, join: &impl Join) {
         let n = mesh.positions.len();
         self.camera_space.resize(n, Vec3::ZERO);
-        self.screen.resize(n, Projected::default());
+        self.screen.resize(n, ScreenVertex::default());
         let view = (camera.projection(), camera.near, camera.screen_rect());
-        let mut fit = place_all(
+        let mut fit = project_all(
             &mesh.positions,
             &mut self.camera_space,
             &mut self.screen,
@@ -721,10 +713,10 @@ const PART: usize = 1 << 15;
 /// Every point of `positions` in camera space and projected, and where they
 /// all lie (before the near plane is taken into account), in parts split by
 /// `join`.
-fn place_all(
+fn project_all(
     positions: &[Vec3],
     camera_space: &mut [Vec3],
-    screen: &mut [Projected],
+    screen: &mut [ScreenVertex<Nothing>],
     view: &(Projection, Option<f32>, Rect),
     join: &impl Join,
 ) -> Fit {
@@ -735,8 +727,8 @@ fn place_all(
         let (s, t) = screen.split_at_mut(half);
         let (mut first, mut second) = (Fit::default(), Fit::default());
         join.join(
-            || first = place_all(p, c, s, view, join),
-            || second = place_all(q, d, t, view, join),
+            || first = project_all(p, c, s, view, join),
+            || second = project_all(q, d, t, view, join),
         );
         return Fit {
             in_front: first.in_front && second.in_front,
@@ -757,7 +749,12 @@ fn place_all(
         fit.in_front &= in_front;
         let on_screen = in_front
             && projection.project_centred(*c).is_some_and(|(x, y, zinv)| {
-                *s = Projected { x, y, zinv };
+                *s = ScreenVertex {
+                    x,
+                    y,
+                    zinv,
+                    varying: Nothing {},
+                };
                 (rect.left..=rect.right).contains(&x) && (rect.top..=rect.bottom).contains(&y)
             });
         fit.inside &= on_screen;
