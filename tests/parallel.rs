@@ -90,3 +90,51 @@ fn one_two_and_seven_threads_draw_the_same_bytes() {
         }
     }
 }
+
+/// A band passes over groups of faces by the rows of the vertices they name,
+/// found once per mesh: a mesh whose faces name vertices all over it, and a
+/// prefix of the faces of the mesh the bands were made for (as `animate` draws),
+/// still give one thread's bytes and counts.
+#[test]
+fn scattered_faces_and_a_prefix_of_the_faces_draw_the_same_bytes() {
+    let grid = parse_scene("cornell:40").unwrap().mesh;
+    let mut scattered = grid.clone();
+    let n = grid.faces.len();
+    // Face i takes face 7919 i mod n (a prime not dividing n, so each face once):
+    // neighbours in the list lie far apart.
+    assert_ne!(n % 7919, 0);
+    for (i, face) in scattered.faces.iter_mut().enumerate() {
+        *face = grid.faces[i * 7919 % n];
+    }
+    let mut prefix = grid.clone();
+    prefix.faces.truncate(n * 2 / 5);
+    let camera = rasterlab::Camera {
+        focal: 240.0,
+        ..rasterlab::Camera::handout(300, 257)
+    };
+    let uniforms = Inputs::lit(Settings::default().light);
+    for figure in [
+        Figure::of(StageName::Depth),
+        Figure::of(StageName::PixelLight).with_raster(Raster::Edge),
+    ] {
+        for (made_for, drawn) in [(&scattered, &scattered), (&grid, &prefix)] {
+            let draw = |threads: usize| {
+                let mut p = Parallel::new(figure, made_for, threads).unwrap();
+                let mut frame = Frame::default();
+                p.render(&uniforms, drawn, &camera, &mut frame);
+                (frame, p.stats())
+            };
+            let (one, stats) = draw(1);
+            assert!(
+                stats.view_tests_skipped && stats.pixels_written > 10_000,
+                "{stats:?}"
+            );
+            assert_eq!(stats.triangles, drawn.faces.len() as u64);
+            for threads in [2, 3] {
+                let (many, many_stats) = draw(threads);
+                assert!(one.color == many.color, "{}: {threads} threads", figure.label());
+                assert_eq!(stats, many_stats, "{}", figure.label());
+            }
+        }
+    }
+}

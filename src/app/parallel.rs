@@ -103,12 +103,16 @@ impl Parallel {
         } else {
             None
         };
+        let mut vertices = Vertices::default();
+        if threads > 1 {
+            vertices.group_faces(model.mesh);
+        }
         Ok(Parallel {
             pipelines: (0..threads).map(|_| figure.pipeline_for(model)).collect(),
             pool,
             stats: Stats::default(),
             frames: figure.tangent_frames(model),
-            vertices: Vertices::default(),
+            vertices,
             work: Vec::new(),
             ends: Vec::new(),
         })
@@ -116,7 +120,9 @@ impl Parallel {
 
     /// Sizes `frame` to the camera's image and draws `mesh` into it, a band per
     /// thread, each with the stage made from `inputs` (and the faces' tangent
-    /// frames, which this keeps).
+    /// frames, which this keeps). `mesh` is the model's, or one with its
+    /// vertices and its first faces: the tangent frames and the groups of faces
+    /// the bands pass over ([`Vertices::group_faces`]) were made from it.
     pub fn render(&mut self, inputs: &Inputs, mesh: &Mesh, camera: &Camera, frame: &mut Frame) {
         let vertices = &mut self.vertices;
         match &self.pool {

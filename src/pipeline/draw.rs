@@ -3,6 +3,7 @@
 //! every pixel goes through the depth test (for stages that have one) and the
 //! stage's pixel shader into the render target.
 
+use super::bands::{chunk_rows, group_rows, FaceGroups, CHUNK};
 use super::camera::{Camera, Projection};
 use super::clip::{
     clip_near, clip_rect, clip_segment_near, clip_segment_rect, CameraVertex, Polygon, Rect,
@@ -15,6 +16,8 @@ use super::stage::{Primitive, Stage, Surface};
 use super::target::{pack, Frame, Target};
 use glam::Vec3;
 use std::marker::PhantomData;
+use std::mem::take;
+use std::ops::Range;
 
 /// How far the guard band reaches beyond each side of the screen, in screen
 /// sizes: primitives are cut there, so none costs more than a few screens.
@@ -43,6 +46,11 @@ pub struct Pipeline<V: Varying, I: Interpolation = Perspective, R: Rasterizer = 
     /// Each vertex as the rasterizer places it ([`Rasterizer::place`]), when the
     /// mesh is in full view.
     places: Vec<R::Place>,
+    /// The faces a band of a frame in full view draws, as runs of face indices
+    /// (each with whether its faces may lie beyond the band), and the chunks of
+    /// vertices they name ([`FaceGroups`]).
+    runs: Vec<(Range<usize>, bool)>,
+    named: Vec<bool>,
     visible: Visible<V>,
     stats: Stats,
     interpolation: PhantomData<I>,
@@ -129,6 +137,8 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Default for Pipeline<V, I, R> 
             scratch: Default::default(),
             vertices: Vertices::default(),
             places: Vec::new(),
+            runs: Vec::new(),
+            named: Vec::new(),
             visible: Visible {
                 index: Vec::new(),
                 carried: Vec::new(),
@@ -177,7 +187,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         target: &mut Target,
     ) {
         // Taken out of `self` while the faces are drawn, and put back for the next frame.
-        let mut vertices = std::mem::take(&mut self.vertices);
+        let mut vertices = take(&mut self.vertices);
         vertices.prepare(mesh, camera);
         self.draw_prepared(stage, mesh, camera, &vertices, target);
         self.vertices = vertices;
@@ -252,76 +262,124 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         let in_view = S::PRIMITIVE == Primitive::Polygons && !screen.is_empty();
         let pass_over = in_view && !whole;
         // Taken out of `self` while the faces are drawn, and put back for the next frame.
-        let mut places = std::mem::take(&mut self.places);
-        places.clear();
+        let (mut places, mut runs) = (take(&mut self.places), take(&mut self.runs));
+        runs.clear();
+        // A band of a frame in full view whose faces are grouped passes over the
+        // groups wholly above or below it without reading their faces. Culling
+        // counts faces, so it reads them all.
+        let grouped = vertices
+            .grouped()
+            .filter(|_| pass_over && self.cull == Cull::None);
+        let named = &mut self.named;
+        named.clear();
+        if let Some((groups, rows)) = grouped {
+            named.resize(rows.len(), groups.scattered());
+            for (faces, chunks) in groups.groups(mesh.faces.len()) {
+                let rows = group_rows(chunks.clone(), rows);
+                if rows.is_some_and(|(low, high)| high < top || low > bottom) {
+                    // In full view it is drawn, by the band its rows are in.
+                    self.stats.drawn += faces.len() as u64;
+                    continue;
+                }
+                let beyond = rows.is_none_or(|(low, high)| low < top || high > bottom);
+                if !groups.scattered() {
+                    named[chunks].fill(true);
+                }
+                match runs.last_mut() {
+                    Some((run, b)) if run.end == faces.start && *b == beyond => run.end = faces.end,
+                    _ => runs.push((faces, beyond)),
+                }
+            }
+        } else {
+            runs.push((0..mesh.faces.len(), pass_over));
+        }
         if in_view {
             let v = &view.viewport;
-            places.extend(screen.iter().map(|s| self.raster.place(s.x, s.y, v)));
+            let place = |s: &ScreenVertex<Nothing>| self.raster.place(s.x, s.y, v);
+            if grouped.is_some() {
+                // Only the chunks this band's faces name; the others keep
+                // whatever they held, unread.
+                places.resize(screen.len(), R::Place::default());
+                for (k, _) in named.iter().enumerate().filter(|(_, &n)| n) {
+                    let chunk = k * CHUNK..((k + 1) * CHUNK).min(screen.len());
+                    for (p, s) in places[chunk.clone()].iter_mut().zip(&screen[chunk]) {
+                        *p = place(s);
+                    }
+                }
+            } else {
+                places.clear();
+                places.extend(screen.iter().map(place));
+            }
         }
-        for (index, face) in mesh.faces.iter().enumerate() {
-            if self.cull != Cull::None {
-                let v0 = mesh.positions[face.vertices[0] as usize];
-                let facing = (camera.position - v0).dot(face.normal);
-                let culled = match self.cull {
-                    Cull::Back => facing < 0.0,
-                    Cull::Front => facing > 0.0,
-                    Cull::None => false,
+        for &(ref run, pass_over) in &runs {
+            for (index, face) in mesh.faces[run.clone()].iter().enumerate() {
+                let index = run.start + index;
+                if self.cull != Cull::None {
+                    let v0 = mesh.positions[face.vertices[0] as usize];
+                    let facing = (camera.position - v0).dot(face.normal);
+                    let culled = match self.cull {
+                        Cull::Back => facing < 0.0,
+                        Cull::Front => facing > 0.0,
+                        Cull::None => false,
+                    };
+                    if culled {
+                        self.stats.culled += 1;
+                        continue;
+                    }
+                }
+                if pass_over {
+                    let [a, b, c] = face.vertices.map(|v| screen[v as usize].y);
+                    if a.max(b).max(c) < top || a.min(b).min(c) > bottom {
+                        // In full view it is drawn, by the band its rows are in.
+                        self.stats.drawn += 1;
+                        continue;
+                    }
+                }
+                let surface = Surface {
+                    normal: face.normal,
+                    reflectance: mesh.material(face).color,
+                    face: index as u32,
+                    material: face.material,
                 };
-                if culled {
-                    self.stats.culled += 1;
-                    continue;
-                }
-            }
-            if pass_over {
-                let [a, b, c] = face.vertices.map(|v| screen[v as usize].y);
-                if a.max(b).max(c) < top || a.min(b).min(c) > bottom {
-                    // In full view it is drawn, by the band its rows are in.
-                    self.stats.drawn += 1;
-                    continue;
-                }
-            }
-            let surface = Surface {
-                normal: face.normal,
-                reflectance: mesh.material(face).color,
-                face: index as u32,
-                material: face.material,
-            };
-            let varyings = [0, 1, 2].map(|k| stage.vertex_shader(&mesh.vertex(face, k), &surface));
-            let at = |k: usize| face.vertices[k] as usize;
-            let in_camera_space = || {
-                [0, 1, 2].map(|k| CameraVertex {
-                    position: camera_space[at(k)],
-                    varying: varyings[k],
-                })
-            };
-            match S::PRIMITIVE {
-                Primitive::Points => {
-                    self.stats.drawn += 1;
-                    self.draw_points(stage, view, &in_camera_space(), &surface, target)
-                }
-                Primitive::Lines => {
-                    self.stats.drawn += 1;
-                    self.draw_edges(stage, view, &in_camera_space(), &surface, target)
-                }
-                Primitive::Polygons if in_view => {
-                    let corners = [0, 1, 2].map(|k| {
-                        let zinv = screen[at(k)].zinv;
-                        Placed {
-                            place: places[at(k)],
-                            zinv,
-                            varying: I::encode(zinv, varyings[k]),
-                        }
-                    });
-                    let corners = FaceCorners::InView(corners);
-                    self.draw_polygon::<S, BATCH>(stage, view, corners, &surface, target)
-                }
-                Primitive::Polygons => {
-                    let corners = FaceCorners::InCameraSpace(in_camera_space());
-                    self.draw_polygon::<S, BATCH>(stage, view, corners, &surface, target)
+                let varyings =
+                    [0, 1, 2].map(|k| stage.vertex_shader(&mesh.vertex(face, k), &surface));
+                let at = |k: usize| face.vertices[k] as usize;
+                let in_camera_space = || {
+                    [0, 1, 2].map(|k| CameraVertex {
+                        position: camera_space[at(k)],
+                        varying: varyings[k],
+                    })
+                };
+                match S::PRIMITIVE {
+                    Primitive::Points => {
+                        self.stats.drawn += 1;
+                        self.draw_points(stage, view, &in_camera_space(), &surface, target)
+                    }
+                    Primitive::Lines => {
+                        self.stats.drawn += 1;
+                        self.draw_edges(stage, view, &in_camera_space(), &surface, target)
+                    }
+                    Primitive::Polygons if in_view => {
+                        let corners = [0, 1, 2].map(|k| {
+                            let zinv = screen[at(k)].zinv;
+                            Placed {
+                                place: places[at(k)],
+                                zinv,
+                                varying: I::encode(zinv, varyings[k]),
+                            }
+                        });
+                        let corners = FaceCorners::InView(corners);
+                        self.draw_polygon::<S, BATCH>(stage, view, corners, &surface, target)
+                    }
+                    Primitive::Polygons => {
+                        let corners = FaceCorners::InCameraSpace(in_camera_space());
+                        self.draw_polygon::<S, BATCH>(stage, view, corners, &surface, target)
+                    }
                 }
             }
         }
         self.places = places;
+        self.runs = runs;
     }
 
     /// The handout's `DrawPolygon`: a triangle of a mesh in full view goes to the
@@ -670,6 +728,12 @@ pub struct Vertices {
     /// projected once; empty otherwise.
     screen: Vec<ScreenVertex<Nothing>>,
     fit: Fit,
+    /// The mesh's faces in groups, for a caller that draws it in bands frame
+    /// after frame ([`Vertices::group_faces`]), and the rows each chunk of
+    /// vertices lies in this frame, when the groups fit the mesh and it is in
+    /// full view; empty otherwise.
+    groups: FaceGroups,
+    rows: Vec<(f32, f32)>,
 }
 
 impl Vertices {
@@ -677,6 +741,22 @@ impl Vertices {
     /// can see where the triangles are; empty otherwise.
     pub fn screen(&self) -> &[ScreenVertex<Nothing>] {
         &self.screen
+    }
+
+    /// Groups `mesh`'s faces ([`FaceGroups`]), so that each band of the frames
+    /// prepared from now on passes over the faces wholly above or below it
+    /// without reading them. For a caller that draws the same mesh frame after
+    /// frame (or a mesh with its vertices and its first faces): the groups are
+    /// checked against a frame's mesh by its sizes only.
+    pub fn group_faces(&mut self, mesh: &Mesh) {
+        self.groups = FaceGroups::of(mesh);
+    }
+
+    /// The groups of faces and this frame's rows of each chunk of vertices, when
+    /// the mesh is grouped and in full view.
+    fn grouped(&self) -> Option<(&FaceGroups, &[(f32, f32)])> {
+        let rows = &self.rows[..];
+        (!rows.is_empty() && !self.screen.is_empty()).then_some((&self.groups, rows))
     }
 
     /// Takes every vertex of `mesh` to `camera`'s space and looks at where they
@@ -691,17 +771,24 @@ impl Vertices {
         let n = mesh.positions.len();
         self.camera_space.resize(n, Vec3::ZERO);
         self.screen.resize(n, ScreenVertex::default());
+        let chunks = if self.groups.fit(mesh) {
+            n.div_ceil(CHUNK)
+        } else {
+            0
+        };
+        self.rows.resize(chunks, (0.0, 0.0));
         let view = (camera.projection(), camera.near, camera.screen_rect());
         let mut fit = project_all(
             &mesh.positions,
             &mut self.camera_space,
-            &mut self.screen,
+            (&mut self.screen, &mut self.rows),
             &view,
             join,
         );
         fit.in_front |= camera.near.is_none();
         if !(fit.inside && fit.in_front) {
             self.screen.clear();
+            self.rows.clear();
         }
         self.fit = fit;
     }
@@ -710,25 +797,27 @@ impl Vertices {
 /// Vertices handed to one piece of work at a time when the work is split.
 const PART: usize = 1 << 15;
 
-/// Every point of `positions` in camera space and projected, and where they
-/// all lie (before the near plane is taken into account), in parts split by
-/// `join`.
+/// Every point of `positions` in camera space and projected (with the rows of
+/// each chunk of them, if `rows` is not empty), and where they all lie (before
+/// the near plane is taken into account), in parts split by `join`.
 fn project_all(
     positions: &[Vec3],
     camera_space: &mut [Vec3],
-    screen: &mut [ScreenVertex<Nothing>],
+    (screen, rows): (&mut [ScreenVertex<Nothing>], &mut [(f32, f32)]),
     view: &(Projection, Option<f32>, Rect),
     join: &impl Join,
 ) -> Fit {
     if positions.len() > PART {
-        let half = positions.len() / 2;
+        // Split between chunks, so that each part finds its own chunks' rows.
+        let half = (positions.len() / 2).next_multiple_of(CHUNK);
         let (p, q) = positions.split_at(half);
         let (c, d) = camera_space.split_at_mut(half);
         let (s, t) = screen.split_at_mut(half);
+        let (r, u) = rows.split_at_mut((half / CHUNK).min(rows.len()));
         let (mut first, mut second) = (Fit::default(), Fit::default());
         join.join(
-            || first = project_all(p, c, s, view, join),
-            || second = project_all(q, d, t, view, join),
+            || first = project_all(p, c, (s, r), view, join),
+            || second = project_all(q, d, (t, u), view, join),
         );
         return Fit {
             in_front: first.in_front && second.in_front,
@@ -740,7 +829,7 @@ fn project_all(
         in_front: true,
         inside: true,
     };
-    for ((&p, c), s) in positions.iter().zip(camera_space).zip(screen) {
+    for ((&p, c), s) in positions.iter().zip(camera_space).zip(screen.iter_mut()) {
         *c = projection.to_camera(p);
         if !fit.in_front && !fit.inside {
             continue; // neither can hold: no need to project the rest
@@ -758,6 +847,9 @@ fn project_all(
                 (rect.left..=rect.right).contains(&x) && (rect.top..=rect.bottom).contains(&y)
             });
         fit.inside &= on_screen;
+    }
+    if fit.inside && !rows.is_empty() {
+        chunk_rows(screen, rows);
     }
     fit
 }

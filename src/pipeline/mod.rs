@@ -16,10 +16,12 @@
 //! - [`interpolate`](mod@interpolate): `Interpolate` for any per-pixel struct, and
 //!   perspective-correct or affine interpolation.
 //! - [`target`]: colour and depth buffers over a band of rows, and 8-bit packing.
-//! - [`draw`]: the handout's `Draw` and `DrawPolygon`, which joins them.
+//! - [`draw`]: the handout's `Draw` and `DrawPolygon`, which joins them;
+//!   [`bands`]: the faces in groups, for a frame drawn in bands of rows.
 //!
 //! This layer uses nothing of the crate outside it: only glam and std.
 
+pub mod bands;
 pub mod camera;
 pub mod clip;
 pub mod draw;
