@@ -132,7 +132,11 @@ fn scattered_faces_and_a_prefix_of_the_faces_draw_the_same_bytes() {
             assert_eq!(stats.triangles, drawn.faces.len() as u64);
             for threads in [2, 3] {
                 let (many, many_stats) = draw(threads);
-                assert!(one.color == many.color, "{}: {threads} threads", figure.label());
+                assert!(
+                    one.color == many.color,
+                    "{}: {threads} threads",
+                    figure.label()
+                );
                 assert_eq!(stats, many_stats, "{}", figure.label());
             }
         }

@@ -6,9 +6,11 @@
 use crate::app::figure::{Figure, Inputs, Render};
 use crate::extensions::normal_map::TangentFrame;
 use crate::extensions::texture::Model;
+use crate::pipeline::bands::CHUNK;
 use crate::pipeline::clip::ScreenVertex;
 use crate::pipeline::draw::{Join, Stats, Vertices};
 use crate::pipeline::{Camera, Frame, Mesh, Target};
+use std::time::Instant;
 
 /// A figure drawn in `threads` bands.
 pub struct Parallel {
@@ -20,8 +22,12 @@ pub struct Parallel {
     /// The mesh's vertices in camera space, prepared once per frame for every band.
     vertices: Vertices,
     /// Each row's work this frame, and where the bands end (kept between frames).
-    work: Vec<u64>,
+    work: Vec<f64>,
     ends: Vec<u32>,
+    /// How much each row's work costs compared with the others, as the bands'
+    /// drawing times have shown, and each band's time in the last frame.
+    weight: Vec<f64>,
+    times: Vec<f64>,
 }
 
 /// What every band of a frame reads.
@@ -38,7 +44,12 @@ struct Shared<'a> {
 /// the two sides of a `rayon::join`, whose jobs live on the stack, so a frame
 /// allocates nothing for its threads. Every pipeline draws, an empty band too,
 /// so that each one's counts are this frame's.
-fn draw_bands(pipelines: &mut [Box<dyn Render>], ends: &[u32], target: Target, shared: Shared) {
+fn draw_bands(
+    pipelines: &mut [Box<dyn Render>],
+    (ends, times): (&[u32], &mut [f64]),
+    target: Target,
+    shared: Shared,
+) {
     let Shared {
         inputs,
         mesh,
@@ -48,16 +59,19 @@ fn draw_bands(pipelines: &mut [Box<dyn Render>], ends: &[u32], target: Target, s
     match pipelines {
         [] => {}
         [only] => {
-            let mut target = target;
-            only.draw_prepared(inputs, mesh, camera, vertices, &mut target)
+            let (mut target, start) = (target, Instant::now());
+            only.draw_prepared(inputs, mesh, camera, vertices, &mut target);
+            times[0] = start.elapsed().as_secs_f64();
         }
         _ => {
             let half = pipelines.len() / 2;
             let (top, bottom) = target.split_at_row(ends[half - 1]);
             let (first, second) = pipelines.split_at_mut(half);
+            let (ends, later) = ends.split_at(half);
+            let (times, later_times) = times.split_at_mut(half);
             rayon::join(
-                || draw_bands(first, &ends[..half], top, shared),
-                || draw_bands(second, &ends[half..], bottom, shared),
+                || draw_bands(first, (ends, times), top, shared),
+                || draw_bands(second, (later, later_times), bottom, shared),
             );
         }
     }
@@ -75,7 +89,7 @@ impl Join for Rayon {
 /// What setting up the triangles around one vertex costs, in pixels filled:
 /// a mesh of small triangles is split into bands by its vertices, a few large
 /// ones by their pixels.
-const VERTEX_COST: u64 = 64;
+const VERTEX_COST: usize = 64;
 
 /// About how many vertices [`Parallel::balance`] looks at.
 const VERTEX_SAMPLE: usize = 1 << 16;
@@ -115,6 +129,8 @@ impl Parallel {
             vertices,
             work: Vec::new(),
             ends: Vec::new(),
+            weight: Vec::new(),
+            times: vec![0.0; threads],
         })
     }
 
@@ -142,10 +158,11 @@ impl Parallel {
             camera,
             vertices: &self.vertices,
         };
-        let (pipelines, ends, target) = (&mut self.pipelines[..], &self.ends[..], frame.target());
+        let pipelines = &mut self.pipelines[..];
+        let (bands, target) = ((&self.ends[..], &mut self.times[..]), frame.target());
         match &self.pool {
-            None => draw_bands(pipelines, ends, target, shared),
-            Some(pool) => pool.install(|| draw_bands(pipelines, ends, target, shared)),
+            None => draw_bands(pipelines, bands, target, shared),
+            Some(pool) => pool.install(|| draw_bands(pipelines, bands, target, shared)),
         }
         // Each band decides about every triangle alike; pixels are its own.
         let mut stats = self.pipelines[0].stats();
@@ -158,37 +175,95 @@ impl Parallel {
     }
 
     /// Ends the bands where each holds about the same work: a row's pixels, and
-    /// for a mesh in view its vertices, each worth [`VERTEX_COST`] pixels. Any
+    /// for a mesh in view its vertices, each worth [`VERTEX_COST`] pixels, each
+    /// row's work weighed by what the bands' times have shown it costs. Any
     /// split draws the same bytes; this one keeps both threads busy when the
-    /// triangles crowd one part of the image.
+    /// triangles crowd one part of the image, or one part's pixels cost more.
     fn balance(&mut self, camera: &Camera) {
         let (n, height) = (self.pipelines.len(), camera.height as usize);
-        self.ends.clear();
         if n == 1 {
+            self.ends.clear();
             self.ends.push(camera.height);
             return;
         }
         self.work.clear();
-        self.work.resize(height, camera.width as u64);
-        // A sample of the vertices is enough to see where they crowd.
-        let screen = self.vertices.screen();
-        let every = (screen.len() / VERTEX_SAMPLE).max(1);
-        let (centre, cost) = (camera.height as f32 / 2.0, VERTEX_COST * every as u64);
-        for &ScreenVertex { y, .. } in screen.iter().step_by(every) {
-            let row = ((y + centre).max(0.0) as usize).min(height.saturating_sub(1));
-            self.work[row] += cost;
+        self.work.resize(height, camera.width as f64);
+        let centre = camera.height as f32 / 2.0;
+        let row = |y: f32| ((y + centre).max(0.0) as usize).min(height.saturating_sub(1));
+        let chunks = self.vertices.chunk_rows();
+        if chunks.is_empty() {
+            // A sample of the vertices is enough to see where they crowd.
+            let screen = self.vertices.screen();
+            let every = (screen.len() / VERTEX_SAMPLE).max(1);
+            let cost = (VERTEX_COST * every) as f64;
+            for &ScreenVertex { y, .. } in screen.iter().step_by(every) {
+                self.work[row(y)] += cost;
+            }
+        } else {
+            // The rows of each chunk of vertices, found as they were projected.
+            let cost = (VERTEX_COST * CHUNK) as f64;
+            for &(low, high) in chunks {
+                self.work[row((low + high) / 2.0)] += cost;
+            }
         }
-        let total: u64 = self.work.iter().sum();
-        let (mut done, mut row) = (0u64, 0usize);
+        self.learn_weights(height);
+        for (w, k) in self.work.iter_mut().zip(&self.weight) {
+            *w *= k;
+        }
+        let total: f64 = self.work.iter().sum();
+        let (mut done, mut row) = (0.0, 0usize);
+        self.ends.clear();
         for band in 1..n {
-            let share = total * band as u64 / n as u64;
-            while row < height && done + self.work[row] / 2 < share {
+            let share = total * band as f64 / n as f64;
+            while row < height && done + self.work[row] / 2.0 < share {
                 done += self.work[row];
                 row += 1;
             }
             self.ends.push(row as u32);
         }
         self.ends.push(camera.height);
+    }
+
+    /// Weighs the rows of each band of the last frame by how long the band took
+    /// against how long its work, as weighed, foretold: a band slower than its
+    /// share makes its rows dearer. Halfway (a square root) each frame, so that
+    /// one frame's noise moves the bands little.
+    fn learn_weights(&mut self, height: usize) {
+        if self.weight.len() != height || self.ends.last() != Some(&(height as u32)) {
+            // A new size: nothing learnt yet.
+            self.weight.clear();
+            self.weight.resize(height, 1.0);
+            return;
+        }
+        let mut start = 0;
+        let (mut all_time, mut all_work) = (0.0, 0.0);
+        for (&end, &time) in self.ends.iter().zip(&self.times) {
+            let rows = start..end as usize;
+            all_work += rows
+                .clone()
+                .map(|r| self.work[r] * self.weight[r])
+                .sum::<f64>();
+            all_time += time;
+            start = end as usize;
+        }
+        if all_time <= 0.0 || all_work <= 0.0 {
+            return;
+        }
+        let mut start = 0;
+        for (&end, &time) in self.ends.iter().zip(&self.times) {
+            let rows = start..end as usize;
+            start = end as usize;
+            let work: f64 = rows.clone().map(|r| self.work[r] * self.weight[r]).sum();
+            if work <= 0.0 || time <= 0.0 {
+                continue;
+            }
+            let dearer = ((time / all_time) / (work / all_work))
+                .sqrt()
+                .clamp(0.5, 2.0);
+            for w in &mut self.weight[rows] {
+                *w = (*w * dearer).clamp(1.0 / 64.0, 64.0);
+            }
+        }
     }
 
     /// Whether the figure tests depth, so its frames need a depth buffer.
@@ -199,5 +274,43 @@ impl Parallel {
     /// What the last frame did, summed over the bands.
     pub fn stats(&self) -> Stats {
         self.stats
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::app::figure::Inputs;
+    use crate::pipeline::{Light, StageName};
+    use crate::scene::cornell_box;
+
+    #[test]
+    fn a_band_slower_than_its_share_is_given_fewer_rows() {
+        let mesh = cornell_box();
+        let camera = Camera::handout(200, 300);
+        let mut parallel = Parallel::new(Figure::of(StageName::Filled), &mesh, 2).unwrap();
+        let mut frame = Frame::default();
+        parallel.render(&Inputs::lit(Light::handout()), &mesh, &camera, &mut frame);
+        // Equal times: the split stays where the pixels split.
+        parallel.times = vec![1.0, 1.0];
+        parallel.balance(&camera);
+        let even = parallel.ends.clone();
+        assert_eq!(even, [150, 300]);
+        // The top band took three times as long: its rows cost more, and it
+        // ends higher, further each frame, but never by a jump.
+        let mut ends = vec![even[0]];
+        for _ in 0..4 {
+            parallel.times = vec![3.0, 1.0];
+            parallel.balance(&camera);
+            ends.push(parallel.ends[0]);
+        }
+        assert!(
+            ends.windows(2).all(|e| e[1] < e[0] && e[0] - e[1] < 50),
+            "{ends:?}"
+        );
+        // A new size learns afresh.
+        let wide = Camera::handout(200, 240);
+        parallel.balance(&wide);
+        assert_eq!(parallel.ends, [120, 240]);
     }
 }

@@ -3,12 +3,12 @@
 //! sets up only its own triangles (and those it shares with a neighbour).
 //!
 //! The faces are taken in groups of [`GROUP`] in the mesh's order, and the
-//! vertices in chunks of [`CHUNK`]. Once per mesh, each group records the run of
-//! chunks that holds every vertex its faces name; once per frame, each chunk
-//! records the lowest and highest row its vertices project to. A group's
-//! triangles lie within its corners' rows, so within its chunks' rows. A mesh
-//! whose faces name nearby vertices (a grid, a subdivided wall, most model files)
-//! has short runs and so tight rows; one that does not is drawn as before,
+//! vertices in chunks of [`CHUNK`]. Once per mesh, each group records the chunks
+//! that hold the vertices its faces name; once per frame, each chunk records the
+//! lowest and highest row its vertices project to. A group's triangles lie within
+//! its corners' rows, so within its chunks' rows. A mesh whose faces name nearby
+//! vertices (a grid, a subdivided wall, most model files) names few chunks per
+//! group, so its rows are tight; a group that names too many is drawn as before,
 //! every face tested.
 
 use super::clip::ScreenVertex;
@@ -17,21 +17,23 @@ use super::mesh::Mesh;
 use std::ops::Range;
 
 /// Faces in a group.
-pub const GROUP: usize = 256;
+pub const GROUP: usize = 32;
 
 /// Vertices in a chunk.
-pub const CHUNK: usize = 64;
+pub const CHUNK: usize = 16;
 
-/// Longer runs than this many chunks are not worth looking at: such a group is
-/// drawn face by face.
-const LONGEST_RUN: u32 = 32;
+/// A group naming more chunks than this is drawn face by face.
+const MOST_CHUNKS: usize = 12;
 
 /// For each group of a mesh's faces, the chunks of vertices its faces name.
 #[derive(Clone, Debug, Default)]
 pub struct FaceGroups {
-    /// The first and last chunk of each group.
-    runs: Vec<(u32, u32)>,
-    /// Whether a group's run is too long to bound its rows.
+    /// Each group's chunks, in order, one after the other; none for a group
+    /// that names too many.
+    chunks: Vec<u32>,
+    /// Where each group's chunks start in `chunks`, and where the last ends.
+    starts: Vec<u32>,
+    /// Whether some group names too many chunks.
     scattered: bool,
     faces: usize,
     vertices: usize,
@@ -40,47 +42,57 @@ pub struct FaceGroups {
 impl FaceGroups {
     /// `mesh`'s faces in groups.
     pub fn of(mesh: &Mesh) -> FaceGroups {
-        let runs: Vec<(u32, u32)> = mesh
-            .faces
-            .chunks(GROUP)
-            .map(|group| {
-                let named = group.iter().flat_map(|f| f.vertices);
-                let (first, last) = named.fold((u32::MAX, 0), |(a, b), v| (a.min(v), b.max(v)));
-                (first / CHUNK as u32, last / CHUNK as u32)
-            })
-            .collect();
-        FaceGroups {
-            scattered: runs.iter().any(|&(a, b)| b - a > LONGEST_RUN),
-            runs,
+        let mut groups = FaceGroups {
             faces: mesh.faces.len(),
             vertices: mesh.positions.len(),
+            ..FaceGroups::default()
+        };
+        let mut named = Vec::with_capacity(3 * GROUP);
+        groups.starts.push(0);
+        for group in mesh.faces.chunks(GROUP) {
+            named.clear();
+            named.extend(
+                group
+                    .iter()
+                    .flat_map(|f| f.vertices.map(|v| v / CHUNK as u32)),
+            );
+            named.sort_unstable();
+            named.dedup();
+            if named.len() <= MOST_CHUNKS {
+                groups.chunks.extend(&named);
+            } else {
+                groups.scattered = true;
+            }
+            groups.starts.push(groups.chunks.len() as u32);
         }
+        groups
     }
 
     /// Whether these groups hold for `mesh`: made from it, or from a mesh with
     /// the same vertices whose first faces are its faces. Only the sizes are
     /// compared: looking at the faces would read them all.
     pub fn fit(&self, mesh: &Mesh) -> bool {
-        !self.runs.is_empty()
+        self.starts.len() > 1
             && mesh.positions.len() == self.vertices
             && mesh.faces.len() <= self.faces
     }
 
-    /// The groups' faces of a mesh with `faces` faces: each group's range of
-    /// faces, and the range of chunks its vertices are in.
-    pub fn groups(&self, faces: usize) -> impl Iterator<Item = (Range<usize>, Range<usize>)> + '_ {
-        self.runs
-            .iter()
+    /// The groups of a mesh with `faces` faces: each group's range of faces, and
+    /// the chunks its vertices are in (none if it names too many).
+    pub fn groups(&self, faces: usize) -> impl Iterator<Item = (Range<usize>, &[u32])> + '_ {
+        self.starts
+            .windows(2)
             .enumerate()
-            .map(move |(g, &(a, b))| {
+            .map(move |(g, ends)| {
                 let from = g * GROUP;
-                (from..(from + GROUP).min(faces), a as usize..b as usize + 1)
+                let chunks = &self.chunks[ends[0] as usize..ends[1] as usize];
+                (from..(from + GROUP).min(faces), chunks)
             })
             .take_while(|(faces, _)| !faces.is_empty())
     }
 
-    /// Whether some group's vertices are too scattered for its rows to be
-    /// bounded: a band then places every vertex.
+    /// Whether some group names too many chunks for its rows to be bounded: a
+    /// band then places every vertex.
     pub fn scattered(&self) -> bool {
         self.scattered
     }
@@ -90,22 +102,26 @@ impl FaceGroups {
 /// `screen` lie in: the lowest and highest `y`.
 pub fn chunk_rows(screen: &[ScreenVertex<Nothing>], rows: &mut [(f32, f32)]) {
     for (chunk, rows) in screen.chunks(CHUNK).zip(rows) {
+        // Plain comparisons, not `f32::min`: the rows are those of vertices in
+        // view, never NaN, and this compiles to one instruction each.
         *rows = chunk.iter().fold((f32::MAX, f32::MIN), |(lo, hi), s| {
-            (lo.min(s.y), hi.max(s.y))
+            (
+                if s.y < lo { s.y } else { lo },
+                if s.y > hi { s.y } else { hi },
+            )
         });
     }
 }
 
-/// The rows a group whose vertices are in `chunks` lies in, if its run is
-/// short enough to look at.
-pub fn group_rows(chunks: Range<usize>, rows: &[(f32, f32)]) -> Option<(f32, f32)> {
-    if chunks.len() > LONGEST_RUN as usize + 1 {
-        return None;
+/// The rows a group whose vertices are in `chunks` lies in, if it names any.
+pub fn group_rows(chunks: &[u32], rows: &[(f32, f32)]) -> Option<(f32, f32)> {
+    let mut bounds = None;
+    for &c in chunks {
+        let &(a, b) = rows.get(c as usize)?;
+        let (lo, hi) = bounds.unwrap_or((a, b));
+        bounds = Some((lo.min(a), hi.max(b)));
     }
-    let rows = rows.get(chunks)?;
-    Some(rows.iter().fold((f32::MAX, f32::MIN), |(lo, hi), &(a, b)| {
-        (lo.min(a), hi.max(b))
-    }))
+    bounds
 }
 
 #[cfg(test)]
@@ -162,10 +178,10 @@ mod tests {
         assert!(!groups.scattered() && groups.fit(&mesh));
         let mut seen = 0;
         for (faces, chunks) in groups.groups(mesh.faces.len()) {
-            let (low, high) = group_rows(chunks, &rows).expect("a grid's runs are short");
-            // 256 faces are under two rows of 90 squares: three rows of vertices,
-            // and a chunk's slack on either side.
-            assert!(high - low <= 4.0, "{low} to {high}");
+            let (low, high) = group_rows(chunks, &rows).expect("a grid names few chunks");
+            // 32 faces are 16 squares of one row of squares, or of two: two or
+            // three rows of vertices, and chunks run from one row to the next.
+            assert!(high - low <= 3.0, "{low} to {high}");
             for face in &mesh.faces[faces] {
                 for v in face.vertices {
                     let y = mesh.positions[v as usize].y;
@@ -179,7 +195,10 @@ mod tests {
         let mut prefix = mesh.clone();
         prefix.faces.truncate(1000);
         assert!(groups.fit(&prefix));
-        assert_eq!(groups.groups(1000).map(|(f, _)| f.len()).sum::<usize>(), 1000);
+        assert_eq!(
+            groups.groups(1000).map(|(f, _)| f.len()).sum::<usize>(),
+            1000
+        );
         prefix.positions.pop();
         assert!(!groups.fit(&prefix));
     }
@@ -187,18 +206,21 @@ mod tests {
     #[test]
     fn faces_naming_far_apart_vertices_are_not_bounded() {
         let mut mesh = grid(90);
-        // The last face of each group names the first vertex as well.
-        for face in mesh.faces.iter_mut().skip(GROUP - 1).step_by(GROUP) {
-            face.vertices[0] = 0;
+        // Every other group's faces each name a vertex of their own row and of
+        // the last: 16 squares of vertices in 3 rows name more than 12 chunks.
+        let last = mesh.positions.len() as u32 - 1;
+        for (k, face) in mesh.faces.iter_mut().enumerate() {
+            if (k / GROUP) % 2 == 1 {
+                face.vertices[0] = last - (k % GROUP) as u32 * CHUNK as u32;
+            }
         }
         let (groups, rows) = (FaceGroups::of(&mesh), rows_of(&mesh));
         assert!(groups.scattered());
         let bounded = groups
             .groups(mesh.faces.len())
-            .filter(|(_, chunks)| group_rows(chunks.clone(), &rows).is_some())
+            .filter(|(_, chunks)| group_rows(chunks, &rows).is_some())
             .count();
-        // Only the groups still near the first vertex: 16 of 64.
-        assert_eq!(groups.groups(mesh.faces.len()).count(), 64);
-        assert_eq!(bounded, 16);
+        assert_eq!(groups.groups(mesh.faces.len()).count(), 507);
+        assert_eq!(bounded, 254);
     }
 }

@@ -275,7 +275,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         if let Some((groups, rows)) = grouped {
             named.resize(rows.len(), groups.scattered());
             for (faces, chunks) in groups.groups(mesh.faces.len()) {
-                let rows = group_rows(chunks.clone(), rows);
+                let rows = group_rows(chunks, rows);
                 if rows.is_some_and(|(low, high)| high < top || low > bottom) {
                     // In full view it is drawn, by the band its rows are in.
                     self.stats.drawn += faces.len() as u64;
@@ -283,7 +283,9 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
                 }
                 let beyond = rows.is_none_or(|(low, high)| low < top || high > bottom);
                 if !groups.scattered() {
-                    named[chunks].fill(true);
+                    for &c in chunks {
+                        named[c as usize] = true;
+                    }
                 }
                 match runs.last_mut() {
                     Some((run, b)) if run.end == faces.start && *b == beyond => run.end = faces.end,
@@ -750,6 +752,12 @@ impl Vertices {
     /// checked against a frame's mesh by its sizes only.
     pub fn group_faces(&mut self, mesh: &Mesh) {
         self.groups = FaceGroups::of(mesh);
+    }
+
+    /// The rows each chunk of [`CHUNK`] vertices lies in this frame, when the
+    /// faces are grouped and the mesh is in full view; empty otherwise.
+    pub fn chunk_rows(&self) -> &[(f32, f32)] {
+        &self.rows
     }
 
     /// The groups of faces and this frame's rows of each chunk of vertices, when
