@@ -115,15 +115,30 @@ fn a_frame_on_two_threads_after_the_first_allocates_nothing() {
         return;
     }
     let s = Settings::default();
-    let (camera, uniforms) = (s.camera, Inputs::lit(s.light));
+    let uniforms = Inputs::lit(s.light);
+    // The first frame sees the box from afar, small; the later ones near, and
+    // moving up and down the image, while the split follows the bands' last
+    // times: each band draws larger triangles, and other rows, than at first.
+    let far = rasterlab::Camera {
+        position: glam::Vec3::new(0.0, 0.0, -8.0),
+        ..s.camera
+    };
+    let (near, up) = (
+        s.camera,
+        rasterlab::Camera {
+            position: s.camera.position + glam::Vec3::new(0.0, 0.25, 0.0),
+            ..s.camera
+        },
+    );
     for (mesh, figure) in cases() {
         let mut parallel = Parallel::new(figure, &mesh, 2).unwrap();
         let mut frame = Frame::default();
-        parallel.render(&uniforms, &mesh, &camera, &mut frame);
+        parallel.render(&uniforms, &mesh, &far, &mut frame);
         ALLOCATIONS_ALL.store(0, Ordering::Relaxed);
         COUNTING_ALL.store(true, Ordering::Relaxed);
-        for _ in 0..FRAMES {
-            parallel.render(&uniforms, &mesh, &camera, &mut frame);
+        for k in 0..FRAMES {
+            let camera = if k % 2 == 0 { &up } else { &near };
+            parallel.render(&uniforms, &mesh, camera, &mut frame);
         }
         COUNTING_ALL.store(false, Ordering::Relaxed);
         let n = ALLOCATIONS_ALL.load(Ordering::Relaxed);

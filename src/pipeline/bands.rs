@@ -91,6 +91,11 @@ impl FaceGroups {
             .take_while(|(faces, _)| !faces.is_empty())
     }
 
+    /// How many groups there are.
+    pub fn count(&self) -> usize {
+        self.starts.len().saturating_sub(1)
+    }
+
     /// Whether some group names too many chunks for its rows to be bounded: a
     /// band then places every vertex.
     pub fn scattered(&self) -> bool {

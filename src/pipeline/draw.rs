@@ -96,15 +96,29 @@ pub struct Stats {
 /// The pixels of one triangle that passed the depth test, shaded together once the
 /// triangle is rasterized: the shading loop then runs over plain arrays, which the
 /// compiler vectorises. A triangle covers each pixel once, so the target ends up
-/// exactly as if each pixel were shaded at once. The arrays grow to the largest
-/// triangle and are kept, so a small triangle costs only its own pixels.
+/// exactly as if each pixel were shaded at once. The arrays hold up to
+/// [`BATCH_PIXELS`] pixels, made room for in the first frame, and a larger
+/// triangle is shaded in parts: however the bands are split, no later frame
+/// allocates, and a small triangle costs only its own pixels.
 struct Visible<V> {
     index: Vec<usize>,
     carried: Vec<(f32, V)>,
     shaded: Vec<u32>,
 }
 
+/// The most pixels [`Visible`] shades at once.
+const BATCH_PIXELS: usize = 1 << 14;
+
 impl<V: Varying> Visible<V> {
+    /// Room for [`BATCH_PIXELS`] pixels, if there is not already.
+    fn reserve(&mut self) {
+        if self.index.capacity() < BATCH_PIXELS {
+            self.index.reserve(BATCH_PIXELS);
+            self.carried.reserve(BATCH_PIXELS);
+            self.shaded.reserve(BATCH_PIXELS);
+        }
+    }
+
     /// The handout's `PixelShader` for every visible pixel of one triangle, then
     /// each colour into its place. Kept out of line: a small function of its own
     /// keeps the light's values in registers, and the shading loop vectorises.
@@ -245,6 +259,13 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         vertices: &Vertices,
         target: &mut Target,
     ) {
+        // Room, made in the first frame, for what any band of any later frame
+        // holds: a batch of pixels, and a polygon's rows the image's height.
+        if BATCH {
+            self.visible.reserve();
+        }
+        self.raster
+            .reserve(&mut self.scratch, camera.height as usize);
         let camera_space = &vertices.camera_space[..];
         // A band of a frame in full view passes over the triangles wholly above or
         // below its rows before any shading or setup (the band that holds them
@@ -273,6 +294,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         let named = &mut self.named;
         named.clear();
         if let Some((groups, rows)) = grouped {
+            runs.reserve(groups.count());
             named.resize(rows.len(), groups.scattered());
             for (faces, chunks) in groups.groups(mesh.faces.len()) {
                 let rows = group_rows(chunks, rows);
@@ -462,9 +484,18 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
                 return;
             }
             if BATCH {
-                // Shaded below, the whole triangle's visible pixels at once.
+                // Shaded below, the whole triangle's visible pixels at once (in
+                // parts, if there are too many to hold).
                 visible.index.push(i);
                 visible.carried.push((p.zinv, p.varying));
+                if visible.index.len() == BATCH_PIXELS {
+                    written += BATCH_PIXELS as u64;
+                    if let Some(color) = color.as_deref_mut() {
+                        visible.shade::<S, I>(stage, surface, color);
+                    }
+                    visible.index.clear();
+                    visible.carried.clear();
+                }
             } else {
                 written += 1;
                 if let Some(color) = color.as_deref_mut() {
@@ -475,7 +506,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         };
         corners.cover(&self.raster, &mut self.scratch, &view.viewport, plot);
         if BATCH {
-            written = visible.index.len() as u64;
+            written += visible.index.len() as u64;
         }
         self.stats.pixels_written += written;
         self.stats.depth_rejected += rejected;

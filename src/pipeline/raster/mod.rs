@@ -96,6 +96,12 @@ pub trait Rasterizer: Copy + Default + Send + 'static {
     type Place: Copy + Default + Send;
     fn place(&self, x: f32, y: f32, viewport: &Viewport) -> Self::Place;
 
+    /// Makes room in `scratch` for a polygon `rows` rows tall, so that no later
+    /// frame allocates, whichever band of rows it draws.
+    fn reserve<V: Varying>(&self, scratch: &mut Self::Scratch<V>, rows: usize) {
+        let _ = (scratch, rows);
+    }
+
     /// [`Rasterizer::polygon`] for a triangle whose corners are placed already.
     fn triangle<V: Varying>(
         &self,

@@ -32,6 +32,13 @@ pub fn to_pixel<V>(s: ScreenVertex<V>, viewport: &Viewport) -> Pixel<V> {
 impl Rasterizer for RowRaster {
     type Scratch<V: Varying> = Rows<V>;
 
+    fn reserve<V: Varying>(&self, rows: &mut Rows<V>, height: usize) {
+        if rows.left.capacity() < height {
+            rows.left.reserve(height);
+            rows.right.reserve(height);
+        }
+    }
+
     fn point<V: Varying>(
         &self,
         p: ScreenVertex<V>,
