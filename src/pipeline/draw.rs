@@ -110,6 +110,23 @@ struct Visible<V> {
 const BATCH_PIXELS: usize = 1 << 14;
 
 impl<V: Varying> Visible<V> {
+    /// Shades the pixels held so far and lets them go, for a triangle with more
+    /// than [`BATCH_PIXELS`]: rare, so kept out of the pixel loop.
+    #[cold]
+    #[inline(never)]
+    fn flush<S: Stage<Varying = V>, I: Interpolation>(
+        &mut self,
+        stage: &S,
+        surface: &Surface,
+        color: Option<&mut [u32]>,
+    ) {
+        if let Some(color) = color {
+            self.shade::<S, I>(stage, surface, color);
+        }
+        self.index.clear();
+        self.carried.clear();
+    }
+
     /// Room for [`BATCH_PIXELS`] pixels, if there is not already.
     fn reserve(&mut self) {
         if self.index.capacity() < BATCH_PIXELS {
@@ -490,11 +507,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
                 visible.carried.push((p.zinv, p.varying));
                 if visible.index.len() == BATCH_PIXELS {
                     written += BATCH_PIXELS as u64;
-                    if let Some(color) = color.as_deref_mut() {
-                        visible.shade::<S, I>(stage, surface, color);
-                    }
-                    visible.index.clear();
-                    visible.carried.clear();
+                    visible.flush::<S, I>(stage, surface, color.as_deref_mut());
                 }
             } else {
                 written += 1;
