@@ -10,6 +10,7 @@ use crate::pipeline::bands::CHUNK;
 use crate::pipeline::clip::ScreenVertex;
 use crate::pipeline::draw::{Join, Stats, Vertices};
 use crate::pipeline::{Camera, Frame, Mesh, Target};
+use std::ops::Range;
 use std::time::Instant;
 
 /// A figure drawn in `threads` bands.
@@ -235,32 +236,28 @@ impl Parallel {
             self.weight.resize(height, 1.0);
             return;
         }
-        let mut start = 0;
-        let (mut all_time, mut all_work) = (0.0, 0.0);
-        for (&end, &time) in self.ends.iter().zip(&self.times) {
-            let rows = start..end as usize;
-            all_work += rows
-                .clone()
-                .map(|r| self.work[r] * self.weight[r])
-                .sum::<f64>();
-            all_time += time;
-            start = end as usize;
-        }
+        // Each band's rows, its work as weighed so far, and its time.
+        let (work, weight) = (&self.work, &mut self.weight);
+        let starts = std::iter::once(0).chain(self.ends.iter().map(|&e| e as usize));
+        let bands = starts
+            .zip(&self.ends)
+            .map(|(start, &end)| start..end as usize);
+        let weighed =
+            |weight: &[f64], rows: Range<usize>| -> f64 { rows.map(|r| work[r] * weight[r]).sum() };
+        let all_work: f64 = weighed(weight, 0..height);
+        let all_time: f64 = self.times.iter().sum();
         if all_time <= 0.0 || all_work <= 0.0 {
             return;
         }
-        let mut start = 0;
-        for (&end, &time) in self.ends.iter().zip(&self.times) {
-            let rows = start..end as usize;
-            start = end as usize;
-            let work: f64 = rows.clone().map(|r| self.work[r] * self.weight[r]).sum();
-            if work <= 0.0 || time <= 0.0 {
+        for (rows, &time) in bands.zip(&self.times) {
+            let band = weighed(weight, rows.clone());
+            if band <= 0.0 || time <= 0.0 {
                 continue;
             }
-            let dearer = ((time / all_time) / (work / all_work))
+            let dearer = ((time / all_time) / (band / all_work))
                 .sqrt()
                 .clamp(0.5, 2.0);
-            for w in &mut self.weight[rows] {
+            for w in &mut weight[rows] {
                 *w = (*w * dearer).clamp(1.0 / 64.0, 64.0);
             }
         }

@@ -96,6 +96,45 @@ impl FaceGroups {
         self.starts.len().saturating_sub(1)
     }
 
+    /// The faces of a band whose rows (from the screen's centre) are `bounds`,
+    /// of a mesh with `faces` faces whose chunks lie in `rows` this frame: as
+    /// runs of faces in the mesh's order, each with whether its faces may lie
+    /// beyond the band (to be tested one by one), and the chunks they name
+    /// (every chunk, if the groups are scattered). Returns how many faces it
+    /// passed over, wholly beyond the band.
+    pub fn select(
+        &self,
+        faces: usize,
+        rows: &[(f32, f32)],
+        (top, bottom): (f32, f32),
+        runs: &mut Vec<(Range<usize>, bool)>,
+        named: &mut Vec<bool>,
+    ) -> u64 {
+        runs.clear();
+        runs.reserve(self.count()); // in the first frame: no later one allocates
+        named.clear();
+        named.resize(rows.len(), self.scattered);
+        let mut passed = 0;
+        for (faces, chunks) in self.groups(faces) {
+            let rows = group_rows(chunks, rows);
+            if rows.is_some_and(|(low, high)| high < top || low > bottom) {
+                passed += faces.len() as u64;
+                continue;
+            }
+            let beyond = rows.is_none_or(|(low, high)| low < top || high > bottom);
+            if !self.scattered {
+                for &c in chunks {
+                    named[c as usize] = true;
+                }
+            }
+            match runs.last_mut() {
+                Some((run, b)) if run.end == faces.start && *b == beyond => run.end = faces.end,
+                _ => runs.push((faces, beyond)),
+            }
+        }
+        passed
+    }
+
     /// Whether some group names too many chunks for its rows to be bounded: a
     /// band then places every vertex.
     pub fn scattered(&self) -> bool {

@@ -3,7 +3,7 @@
 //! every pixel goes through the depth test (for stages that have one) and the
 //! stage's pixel shader into the render target.
 
-use super::bands::{chunk_rows, group_rows, FaceGroups, CHUNK};
+use super::bands::{chunk_rows, FaceGroups, CHUNK};
 use super::camera::{Camera, Projection};
 use super::clip::{
     clip_near, clip_rect, clip_segment_near, clip_segment_rect, CameraVertex, Polygon, Rect,
@@ -309,30 +309,12 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
             .grouped()
             .filter(|_| pass_over && self.cull == Cull::None);
         let named = &mut self.named;
-        named.clear();
-        if let Some((groups, rows)) = grouped {
-            runs.reserve(groups.count());
-            named.resize(rows.len(), groups.scattered());
-            for (faces, chunks) in groups.groups(mesh.faces.len()) {
-                let rows = group_rows(chunks, rows);
-                if rows.is_some_and(|(low, high)| high < top || low > bottom) {
-                    // In full view it is drawn, by the band its rows are in.
-                    self.stats.drawn += faces.len() as u64;
-                    continue;
-                }
-                let beyond = rows.is_none_or(|(low, high)| low < top || high > bottom);
-                if !groups.scattered() {
-                    for &c in chunks {
-                        named[c as usize] = true;
-                    }
-                }
-                match runs.last_mut() {
-                    Some((run, b)) if run.end == faces.start && *b == beyond => run.end = faces.end,
-                    _ => runs.push((faces, beyond)),
-                }
+        match grouped {
+            Some((groups, rows)) => {
+                let bounds = (top, bottom);
+                self.stats.drawn += groups.select(mesh.faces.len(), rows, bounds, &mut runs, named);
             }
-        } else {
-            runs.push((0..mesh.faces.len(), pass_over));
+            None => runs.push((0..mesh.faces.len(), pass_over)),
         }
         if in_view {
             let v = &view.viewport;
