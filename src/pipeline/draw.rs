@@ -31,9 +31,10 @@ pub struct Pipeline<V: Varying, I: Interpolation = Perspective, R: Rasterizer = 
     pub cull: Cull,
     /// How lines and the rows' polygon edges are walked.
     pub lines: Lines,
-    /// Whether each triangle's visible pixels are shaded together once it is
-    /// rasterized ([`Visible`]) rather than one by one as they are found (the
-    /// default): the same pixels and colours either way. Worth it for a pixel
+    /// Whether visible pixels are shaded together in batches ([`Visible`]: a
+    /// batch holds the pixels of consecutive faces that shade alike) rather
+    /// than one by one as they are found (the default): the same pixels and
+    /// colours either way. Worth it for a pixel
     /// shader heavy enough to gain from running over plain arrays, which the
     /// compiler vectorises (light per pixel); a cost for a light one.
     pub batch_shading: bool,
@@ -93,17 +94,23 @@ pub struct Stats {
     pub view_tests_skipped: bool,
 }
 
-/// The pixels of one triangle that passed the depth test, shaded together once the
-/// triangle is rasterized: the shading loop then runs over plain arrays, which the
-/// compiler vectorises. A triangle covers each pixel once, so the target ends up
+/// The pixels that passed the depth test, shaded together later: the shading
+/// loop then runs over plain arrays, which the compiler vectorises. The pixels
+/// of consecutive faces that shade alike ([`Stage::shades_alike`]: for light per
+/// pixel, the faces of one wall of a split mesh) wait in one batch, shaded when
+/// a face that shades otherwise comes, when the batch is full and when the
+/// faces are done. The colours go to the target in the order the pixels came,
+/// so a pixel covered twice ends as the later face left it: the target ends up
 /// exactly as if each pixel were shaded at once. The arrays hold
-/// [`BATCH_PIXELS`] pixels, made in the first frame, and a larger triangle is
-/// shaded in parts: however the bands are split, no later frame allocates, and a
-/// small triangle costs only its own pixels.
+/// [`BATCH_PIXELS`] pixels, made in the first frame: however the bands are
+/// split, no later frame allocates.
 struct Visible<V> {
     index: Vec<usize>,
     carried: Vec<(f32, V)>,
     shaded: Vec<u32>,
+    /// How many pixels wait, and the surface of the faces they are on.
+    waiting: usize,
+    surface: Surface,
 }
 
 /// The most pixels [`Visible`] shades at once.
@@ -195,6 +202,8 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Default for Pipeline<V, I, R> 
                 index: Vec::new(),
                 carried: Vec::new(),
                 shaded: Vec::new(),
+                waiting: 0,
+                surface: Surface::default(),
             },
             stats: Stats::default(),
             interpolation: PhantomData,
@@ -424,6 +433,9 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         }
         self.places = places;
         self.runs = runs;
+        if BATCH && self.visible.waiting > 0 {
+            self.shade_waiting(stage, target);
+        }
     }
 
     /// The handout's `DrawPolygon`: a triangle of a mesh in full view goes to the
@@ -487,6 +499,10 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         surface: &Surface,
         target: &mut Target,
     ) {
+        let visible = &self.visible;
+        if BATCH && visible.waiting > 0 && !S::shades_alike(&visible.surface, surface) {
+            self.shade_waiting(stage, target);
+        }
         let (width, first_row) = (target.width as usize, target.rows.start as usize);
         // Empty unless the stage tests depth (`draw` checked it has a buffer then).
         let depth_buffer = target.depth.as_deref_mut().unwrap_or_default();
@@ -496,10 +512,15 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
             index,
             carried,
             shaded,
+            waiting,
+            surface: waiting_on,
         } = &mut self.visible;
+        if *waiting == 0 {
+            *waiting_on = *surface;
+        }
         // The batch's pixels so far, always fewer than `BATCH_PIXELS`: a count
         // in a register, where `Vec::push` would reload the length each pixel.
-        let mut n = 0;
+        let (mut n, before) = (*waiting, *waiting);
         // Counted where it is cheap: a batch counts its own pixels.
         let (mut rejected, mut written) = (0u64, 0u64);
         let plot = |p: Pixel<V>| {
@@ -541,10 +562,23 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
             }
         };
         corners.cover(&self.raster, &mut self.scratch, &view.viewport, plot);
-        self.stats.pixels_written += written + n as u64;
+        // The pixels of a full batch were counted as it was shaded.
+        self.stats.pixels_written += written + n as u64 - before as u64;
         self.stats.depth_rejected += rejected;
-        if let (true, Some(color)) = (BATCH, color) {
-            let index = &index[..n];
+        *waiting = n;
+    }
+
+    /// The pixels the batch holds, shaded into the target.
+    fn shade_waiting<S: Stage<Varying = V>>(&mut self, stage: &S, target: &mut Target) {
+        let Visible {
+            index,
+            carried,
+            shaded,
+            waiting,
+            surface,
+        } = &mut self.visible;
+        if let Some(color) = target.color.as_deref_mut() {
+            let index = &index[..*waiting];
             shade::<S, I>(
                 stage,
                 surface,
@@ -556,6 +590,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
                 color,
             );
         }
+        *waiting = 0;
     }
 
     /// Section 2: each corner in front of the near plane as one pixel.
@@ -1101,6 +1136,60 @@ mod tests {
         let behind = seen(&mesh, false);
         assert!(behind.1.is_empty() && !behind.2 && !behind.3);
         assert_eq!(seen(&mesh, true), behind);
+    }
+
+    #[test]
+    fn faces_that_shade_alike_wait_in_one_batch_and_keep_the_image() {
+        // The wall, then a nearer grey triangle facing the same way, whose pixels
+        // join the wall's in the batch and must end on top; then a red one (the
+        // grey wait is shaded first) and a grey one behind the wall (rejected).
+        // At 100x100 all the grey pixels wait in one batch; at 200x200 (40 000
+        // pixels) the batch fills in the middle of a face.
+        let (mut mesh, camera) = wall();
+        let grey = Vec3::splat(0.75);
+        let near = [(-1.0, -1.0, 1.5), (1.0, -1.0, 1.5), (0.0, 1.0, 1.5)].map(Vec3::from);
+        mesh.push_triangle(near, -Vec3::Z, grey);
+        let red = [(0.0, 0.0, 1.2), (1.0, 0.0, 1.2), (0.0, 1.0, 1.2)].map(Vec3::from);
+        mesh.push_triangle(red, -Vec3::Z, Vec3::new(0.75, 0.15, 0.15));
+        let behind = [(-1.0, 1.0, 3.0), (1.0, 1.0, 3.0), (0.0, -1.0, 3.0)].map(Vec3::from);
+        mesh.push_triangle(behind, -Vec3::Z, grey);
+        let stage = PixelLight {
+            light: Light::handout(),
+        };
+        let alike =
+            |a, b| PixelLight::<Light>::shades_alike(&surface_of(&mesh, a), &surface_of(&mesh, b));
+        assert!(alike(0, 2) && alike(2, 4) && !alike(2, 3));
+        for size in [100, 200] {
+            let camera = Camera {
+                focal: size as f32,
+                width: size,
+                height: size,
+                ..camera
+            };
+            let mut pipeline = Pipeline::<_>::new();
+            let mut frames = [Frame::default(), Frame::default()];
+            let mut stats = [Stats::default(); 2];
+            for (k, batch) in [true, false].into_iter().enumerate() {
+                pipeline.batch_shading = batch;
+                pipeline.render(&stage, &mesh, &camera, &mut frames[k]);
+                stats[k] = *pipeline.stats();
+            }
+            assert_eq!(frames[0].color, frames[1].color, "{size}");
+            assert_eq!(stats[0], stats[1], "{size}");
+            let pixels = (size * size) as u64;
+            assert!(stats[0].pixels_written > pixels * 9 / 8, "{:?}", stats[0]);
+            assert!(stats[0].depth_rejected > pixels / 40, "{:?}", stats[0]);
+        }
+    }
+
+    fn surface_of(mesh: &Mesh, face: usize) -> Surface {
+        let f = &mesh.faces[face];
+        Surface {
+            normal: f.normal,
+            reflectance: mesh.material(f).color,
+            face: face as u32,
+            material: f.material,
+        }
     }
 
     #[test]

@@ -100,7 +100,7 @@ pub enum Primitive {
 /// The triangle being drawn, as its shaders see it: the handout's `currentNormal`
 /// and `currentReflectance`, and which face and material of the mesh it is (for
 /// stages that keep more about either).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Surface {
     pub normal: Vec3,
     /// The material's colour: ρ of eq. 11.
@@ -126,6 +126,13 @@ pub trait Stage: Sync {
     /// The colour part of the handout's `PixelShader` (the depth test is the
     /// core's): a linear colour, which the render target rounds to 8 bits.
     fn pixel_shader(&self, varying: &Self::Varying, surface: &Surface) -> Vec3;
+
+    /// Whether the pixel shader colours every varying the same on `a` as on
+    /// `b`: a stage that reads less of the surface than all of it says so, and
+    /// the pipeline may shade the pixels of such faces together.
+    fn shades_alike(a: &Surface, b: &Surface) -> bool {
+        a == b
+    }
 }
 
 /// What lights a lit stage: eq. 11 at a surface point. The handout's [`Light`]
@@ -136,12 +143,24 @@ pub trait Lighting: Copy + Sync {
     /// reflectance `rho`, on `surface` (whose own normal may differ from a smooth
     /// or mapped `normal`).
     fn reflected(&self, position: Vec3, normal: Vec3, surface: &Surface, rho: Vec3) -> Vec3;
+
+    /// Whether `reflected` is the same on `a` as on `b` for every other
+    /// argument ([`Stage::shades_alike`]).
+    fn shades_alike(a: &Surface, b: &Surface) -> bool {
+        a == b
+    }
 }
 
 impl Lighting for Light {
     #[inline]
     fn reflected(&self, position: Vec3, normal: Vec3, _: &Surface, rho: Vec3) -> Vec3 {
         Light::reflected(self, position, normal, rho)
+    }
+
+    /// The handout's light reads nothing of the surface beyond the normal and
+    /// reflectance it is handed.
+    fn shades_alike(_: &Surface, _: &Surface) -> bool {
+        true
     }
 }
 
@@ -281,5 +300,14 @@ impl<L: Lighting> Stage for PixelLight<L> {
         let rho = surface.reflectance;
         self.light
             .reflected(varying.world, surface.normal, surface, rho)
+    }
+
+    /// The same normal and reflectance, bit for bit (0.0 and -0.0 are not
+    /// taken as one), and a light that reads nothing else.
+    fn shades_alike(a: &Surface, b: &Surface) -> bool {
+        let bits = |v: Vec3| v.to_array().map(f32::to_bits);
+        bits(a.normal) == bits(b.normal)
+            && bits(a.reflectance) == bits(b.reflectance)
+            && L::shades_alike(a, b)
     }
 }
