@@ -105,9 +105,10 @@ pub struct Stats {
 /// [`BATCH_PIXELS`] pixels, made in the first frame: however the bands are
 /// split, no later frame allocates.
 struct Visible<V> {
-    index: Vec<usize>,
+    /// Where each pixel goes in the target: 32 bits, half the traffic of a
+    /// `usize` (a larger target is shaded pixel by pixel).
+    index: Vec<u32>,
     carried: Vec<(f32, V)>,
-    shaded: Vec<u32>,
     /// How many pixels wait, and the surface of the faces they are on.
     waiting: usize,
     surface: Surface,
@@ -122,17 +123,14 @@ impl<V: Varying> Visible<V> {
         if self.index.len() < BATCH_PIXELS {
             self.index.resize(BATCH_PIXELS, 0);
             self.carried.resize(BATCH_PIXELS, (0.0, V::default()));
-            self.shaded.resize(BATCH_PIXELS, 0);
         }
     }
 }
 
-/// A batch of [`Visible`] pixels: where each goes, what it carries, and room
-/// for its colour.
+/// A batch of [`Visible`] pixels: where each goes and what it carries.
 struct Batch<'a, V> {
-    index: &'a [usize],
+    index: &'a [u32],
     carried: &'a [(f32, V)],
-    shaded: &'a mut [u32],
 }
 
 /// The handout's `PixelShader` for a batch of pixels, then each colour into its
@@ -178,11 +176,20 @@ fn shade_loop<S: Stage, I: Interpolation>(
     color: &mut [u32],
 ) {
     let n = batch.index.len();
-    for (c, &(zinv, q)) in batch.shaded[..n].iter_mut().zip(&batch.carried[..n]) {
-        *c = pack(stage.pixel_shader(&I::decode(zinv, q), surface));
+    let (index, carried) = (batch.index, &batch.carried[..n]);
+    let mut lanes = index.chunks_exact(8).zip(carried.chunks_exact(8));
+    for (index, carried) in &mut lanes {
+        let mut shaded = [0u32; 8];
+        for (c, &(zinv, q)) in shaded.iter_mut().zip(carried) {
+            *c = pack(stage.pixel_shader(&I::decode(zinv, q), surface));
+        }
+        for (&i, &c) in index.iter().zip(&shaded) {
+            color[i as usize] = c;
+        }
     }
-    for (&i, &c) in batch.index.iter().zip(&batch.shaded[..n]) {
-        color[i] = c;
+    let rest = n - n % 8;
+    for (&i, &(zinv, q)) in index[rest..].iter().zip(&carried[rest..]) {
+        color[i as usize] = pack(stage.pixel_shader(&I::decode(zinv, q), surface));
     }
 }
 
@@ -201,7 +208,6 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Default for Pipeline<V, I, R> 
             visible: Visible {
                 index: Vec::new(),
                 carried: Vec::new(),
-                shaded: Vec::new(),
                 waiting: 0,
                 surface: Surface::default(),
             },
@@ -287,7 +293,12 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
             view.near = None; // nothing to cut: no test per triangle
         }
         // Chosen once per frame, so that no loop over faces or pixels tests it.
-        match self.batch_shading {
+        let batch = self.batch_shading
+            && target
+                .color
+                .as_ref()
+                .is_none_or(|c| c.len() <= u32::MAX as usize);
+        match batch {
             true => self.draw_faces::<S, true>(stage, mesh, camera, &view, vertices, target),
             false => self.draw_faces::<S, false>(stage, mesh, camera, &view, vertices, target),
         }
@@ -511,7 +522,6 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         let Visible {
             index,
             carried,
-            shaded,
             waiting,
             surface: waiting_on,
         } = &mut self.visible;
@@ -534,7 +544,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
                 // in `draw_faces`), and n < BATCH_PIXELS: it returns to 0 on
                 // reaching it.
                 unsafe {
-                    *index.get_unchecked_mut(n) = i;
+                    *index.get_unchecked_mut(n) = i as u32;
                     *carried.get_unchecked_mut(n) = (p.zinv, p.varying);
                 }
                 n += 1;
@@ -542,12 +552,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
                     // A triangle too large for one batch is shaded in parts.
                     written += BATCH_PIXELS as u64;
                     if let Some(color) = color.as_deref_mut() {
-                        let batch = Batch {
-                            index,
-                            carried,
-                            shaded,
-                        };
-                        shade::<S, I>(stage, surface, batch, color);
+                        shade::<S, I>(stage, surface, Batch { index, carried }, color);
                     }
                     n = 0;
                 }
@@ -573,22 +578,12 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         let Visible {
             index,
             carried,
-            shaded,
             waiting,
             surface,
         } = &mut self.visible;
         if let Some(color) = target.color.as_deref_mut() {
             let index = &index[..*waiting];
-            shade::<S, I>(
-                stage,
-                surface,
-                Batch {
-                    index,
-                    carried,
-                    shaded,
-                },
-                color,
-            );
+            shade::<S, I>(stage, surface, Batch { index, carried }, color);
         }
         *waiting = 0;
     }
@@ -1268,25 +1263,17 @@ mod tests {
                     (zinv, Perspective::encode(zinv, Position { world }))
                 })
                 .collect();
-            let index: Vec<usize> = (0..n).rev().collect();
-            let mut shaded = vec![0; n];
-            let (mut plain, mut wide) = (vec![0; n], vec![0; n]);
-            let batch = |shaded| Batch {
+            // Every pixel in its own place, in reverse order, so that the
+            // colours are compared pixel by pixel.
+            let index: Vec<u32> = (0..n as u32).rev().collect();
+            let batch = || Batch {
                 index: &index,
                 carried: &carried,
-                shaded,
             };
-            let mut shaded_wide = shaded.clone();
-            shade_loop::<PixelLight, Perspective>(&stage, &surface, batch(&mut shaded), &mut plain);
+            let (mut plain, mut wide) = (vec![0; n], vec![0; n]);
+            shade_loop::<PixelLight, Perspective>(&stage, &surface, batch(), &mut plain);
             // SAFETY: the CPU has AVX2, as checked above.
-            unsafe {
-                shade_avx2::<PixelLight, Perspective>(
-                    &stage,
-                    &surface,
-                    batch(&mut shaded_wide),
-                    &mut wide,
-                )
-            };
+            unsafe { shade_avx2::<PixelLight, Perspective>(&stage, &surface, batch(), &mut wide) };
             assert_eq!(plain, wide);
             let distinct: std::collections::HashSet<_> = plain.iter().collect();
             // 116 colours: the light's whole range, from the indirect term
