@@ -127,10 +127,13 @@ impl<V: Varying> Visible<V> {
     }
 }
 
-/// A batch of [`Visible`] pixels: where each goes and what it carries.
-struct Batch<'a, V> {
+/// A batch of [`Visible`] pixels to shade: the stage and surface they are
+/// shaded with, where each goes and what it carries.
+struct Batch<'a, S: Stage> {
+    stage: &'a S,
+    surface: &'a Surface,
     index: &'a [u32],
-    carried: &'a [(f32, V)],
+    carried: &'a [(f32, S::Varying)],
 }
 
 /// The handout's `PixelShader` for a batch of pixels, then each colour into its
@@ -140,56 +143,51 @@ struct Batch<'a, V> {
 /// operations in the same order either way (Rust never fuses a multiply and an
 /// add by itself), so the same bytes.
 #[inline(never)]
-fn shade<S: Stage, I: Interpolation>(
-    stage: &S,
-    surface: &Surface,
-    batch: Batch<S::Varying>,
-    color: &mut [u32],
-) {
+fn shade<S: Stage, I: Interpolation>(batch: Batch<S>, color: &mut [u32]) {
     #[cfg(target_arch = "x86_64")]
     if std::arch::is_x86_feature_detected!("avx2") {
         // SAFETY: the CPU has AVX2, as just checked.
-        return unsafe { shade_avx2::<S, I>(stage, surface, batch, color) };
+        return unsafe { shade_avx2::<S, I>(batch, color) };
     }
-    shade_loop::<S, I>(stage, surface, batch, color)
+    shade_loop::<S, I>(batch, color)
 }
 
 /// [`shade_loop`] compiled for AVX2. Only this loop: compiled so, the
 /// rasterizer's loop in `fill` was slower, its helpers no longer inlined.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-fn shade_avx2<S: Stage, I: Interpolation>(
-    stage: &S,
-    surface: &Surface,
-    batch: Batch<S::Varying>,
-    color: &mut [u32],
-) {
-    shade_loop::<S, I>(stage, surface, batch, color)
+fn shade_avx2<S: Stage, I: Interpolation>(batch: Batch<S>, color: &mut [u32]) {
+    shade_loop::<S, I>(batch, color)
 }
 
-/// [`shade`]'s work, inlined into each of its compilations.
+/// [`shade`]'s work, inlined into each of its compilations: eight pixels at a
+/// time into a small array, written to the target from there.
 #[inline(always)]
-fn shade_loop<S: Stage, I: Interpolation>(
-    stage: &S,
-    surface: &Surface,
-    batch: Batch<S::Varying>,
-    color: &mut [u32],
-) {
-    let n = batch.index.len();
-    let (index, carried) = (batch.index, &batch.carried[..n]);
-    let mut lanes = index.chunks_exact(8).zip(carried.chunks_exact(8));
-    for (index, carried) in &mut lanes {
+fn shade_loop<S: Stage, I: Interpolation>(batch: Batch<S>, color: &mut [u32]) {
+    let Batch {
+        stage,
+        surface,
+        index,
+        carried,
+    } = batch;
+    let colour =
+        |&(zinv, q): &(f32, S::Varying)| pack(stage.pixel_shader(&I::decode(zinv, q), surface));
+    let (index, carried) = (
+        index.chunks_exact(8),
+        carried[..index.len()].chunks_exact(8),
+    );
+    let rest = index.remainder().iter().zip(carried.remainder());
+    for (index, carried) in index.zip(carried) {
         let mut shaded = [0u32; 8];
-        for (c, &(zinv, q)) in shaded.iter_mut().zip(carried) {
-            *c = pack(stage.pixel_shader(&I::decode(zinv, q), surface));
+        for (c, q) in shaded.iter_mut().zip(carried) {
+            *c = colour(q);
         }
         for (&i, &c) in index.iter().zip(&shaded) {
             color[i as usize] = c;
         }
     }
-    let rest = n - n % 8;
-    for (&i, &(zinv, q)) in index[rest..].iter().zip(&carried[rest..]) {
-        color[i as usize] = pack(stage.pixel_shader(&I::decode(zinv, q), surface));
+    for (&i, q) in rest {
+        color[i as usize] = colour(q);
     }
 }
 
@@ -399,12 +397,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
                         continue;
                     }
                 }
-                let surface = Surface {
-                    normal: face.normal,
-                    reflectance: mesh.material(face).color,
-                    face: index as u32,
-                    material: face.material,
-                };
+                let surface = Surface::of(mesh, index);
                 let varyings =
                     [0, 1, 2].map(|k| stage.vertex_shader(&mesh.vertex(face, k), &surface));
                 let at = |k: usize| face.vertices[k] as usize;
@@ -444,7 +437,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         }
         self.places = places;
         self.runs = runs;
-        if BATCH && self.visible.waiting > 0 {
+        if BATCH {
             self.shade_waiting(stage, target);
         }
     }
@@ -510,8 +503,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         surface: &Surface,
         target: &mut Target,
     ) {
-        let visible = &self.visible;
-        if BATCH && visible.waiting > 0 && !S::shades_alike(&visible.surface, surface) {
+        if BATCH && !S::shades_alike(&self.visible.surface, surface) {
             self.shade_waiting(stage, target);
         }
         let (width, first_row) = (target.width as usize, target.rows.start as usize);
@@ -552,7 +544,13 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
                     // A triangle too large for one batch is shaded in parts.
                     written += BATCH_PIXELS as u64;
                     if let Some(color) = color.as_deref_mut() {
-                        shade::<S, I>(stage, surface, Batch { index, carried }, color);
+                        let batch = Batch {
+                            stage,
+                            surface,
+                            index,
+                            carried,
+                        };
+                        shade::<S, I>(batch, color);
                     }
                     n = 0;
                 }
@@ -573,7 +571,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         *waiting = n;
     }
 
-    /// The pixels the batch holds, shaded into the target.
+    /// The pixels the batch holds, if any, shaded into the target.
     fn shade_waiting<S: Stage<Varying = V>>(&mut self, stage: &S, target: &mut Target) {
         let Visible {
             index,
@@ -581,9 +579,15 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
             waiting,
             surface,
         } = &mut self.visible;
-        if let Some(color) = target.color.as_deref_mut() {
+        if let (1.., Some(color)) = (*waiting, target.color.as_deref_mut()) {
             let index = &index[..*waiting];
-            shade::<S, I>(stage, surface, Batch { index, carried }, color);
+            let batch = Batch {
+                stage,
+                surface,
+                index,
+                carried,
+            };
+            shade::<S, I>(batch, color);
         }
         *waiting = 0;
     }
@@ -1151,8 +1155,9 @@ mod tests {
         let stage = PixelLight {
             light: Light::handout(),
         };
-        let alike =
-            |a, b| PixelLight::<Light>::shades_alike(&surface_of(&mesh, a), &surface_of(&mesh, b));
+        let alike = |a, b| {
+            PixelLight::<Light>::shades_alike(&Surface::of(&mesh, a), &Surface::of(&mesh, b))
+        };
         assert!(alike(0, 2) && alike(2, 4) && !alike(2, 3));
         for size in [100, 200] {
             let camera = Camera {
@@ -1174,16 +1179,6 @@ mod tests {
             let pixels = (size * size) as u64;
             assert!(stats[0].pixels_written > pixels * 9 / 8, "{:?}", stats[0]);
             assert!(stats[0].depth_rejected > pixels / 40, "{:?}", stats[0]);
-        }
-    }
-
-    fn surface_of(mesh: &Mesh, face: usize) -> Surface {
-        let f = &mesh.faces[face];
-        Surface {
-            normal: f.normal,
-            reflectance: mesh.material(f).color,
-            face: face as u32,
-            material: f.material,
         }
     }
 
@@ -1267,13 +1262,15 @@ mod tests {
             // colours are compared pixel by pixel.
             let index: Vec<u32> = (0..n as u32).rev().collect();
             let batch = || Batch {
+                stage: &stage,
+                surface: &surface,
                 index: &index,
                 carried: &carried,
             };
             let (mut plain, mut wide) = (vec![0; n], vec![0; n]);
-            shade_loop::<PixelLight, Perspective>(&stage, &surface, batch(), &mut plain);
+            shade_loop::<PixelLight, Perspective>(batch(), &mut plain);
             // SAFETY: the CPU has AVX2, as checked above.
-            unsafe { shade_avx2::<PixelLight, Perspective>(&stage, &surface, batch(), &mut wide) };
+            unsafe { shade_avx2::<PixelLight, Perspective>(batch(), &mut wide) };
             assert_eq!(plain, wide);
             let distinct: std::collections::HashSet<_> = plain.iter().collect();
             // 116 colours: the light's whole range, from the indirect term

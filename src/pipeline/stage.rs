@@ -17,7 +17,7 @@
 
 use super::interpolate::{linear_ops, Nothing, Varying};
 use super::light::Light;
-use super::mesh::Vertex;
+use super::mesh::{Mesh, Vertex};
 use glam::Vec3;
 
 /// The handout's six stages by name, in its order, as the command line and the
@@ -109,6 +109,19 @@ pub struct Surface {
     pub face: u32,
     /// Index into the mesh's materials.
     pub material: u32,
+}
+
+impl Surface {
+    /// Face `index` of `mesh` as its shaders see it.
+    pub fn of(mesh: &Mesh, index: usize) -> Surface {
+        let face = &mesh.faces[index];
+        Surface {
+            normal: face.normal,
+            reflectance: mesh.material(face).color,
+            face: index as u32,
+            material: face.material,
+        }
+    }
 }
 
 /// One stage of the handout, or any other pair of shaders.
