@@ -44,9 +44,9 @@ pub struct Pipeline<V: Varying, I: Interpolation = Perspective, R: Rasterizer = 
     /// The mesh's vertices as this frame sees them, when [`Pipeline::draw`]
     /// prepares them itself.
     vertices: Vertices,
-    /// Each vertex as the rasterizer places it ([`Rasterizer::place`]), when the
-    /// mesh is in full view.
-    places: Vec<R::Place>,
+    /// Each vertex as the rasterizer places it ([`Rasterizer::place`]), with
+    /// its 1/z beside it (one read per corner), when the mesh is in full view.
+    places: Vec<Placed<R::Place, Nothing>>,
     /// The faces a band of a frame in full view draws, as runs of face indices
     /// (each with whether its faces may lie beyond the band), and the chunks of
     /// vertices they name ([`FaceGroups`]).
@@ -357,11 +357,15 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         }
         if in_view {
             let v = &view.viewport;
-            let place = |s: &ScreenVertex<Nothing>| self.raster.place(s.x, s.y, v);
+            let place = |s: &ScreenVertex<Nothing>| Placed {
+                place: self.raster.place(s.x, s.y, v),
+                zinv: s.zinv,
+                varying: Nothing {},
+            };
             if grouped.is_some() {
                 // Only the chunks this band's faces name; the others keep
                 // whatever they held, unread.
-                places.resize(screen.len(), R::Place::default());
+                places.resize(screen.len(), Placed::default());
                 for (k, _) in named.iter().enumerate().filter(|(_, &n)| n) {
                     let chunk = k * CHUNK..((k + 1) * CHUNK).min(screen.len());
                     for (p, s) in places[chunk.clone()].iter_mut().zip(&screen[chunk]) {
@@ -418,9 +422,9 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
                     }
                     Primitive::Polygons if in_view => {
                         let corners = [0, 1, 2].map(|k| {
-                            let zinv = screen[at(k)].zinv;
+                            let Placed { place, zinv, .. } = places[at(k)];
                             Placed {
-                                place: places[at(k)],
+                                place,
                                 zinv,
                                 varying: I::encode(zinv, varyings[k]),
                             }
@@ -517,9 +521,12 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
             waiting,
             surface: waiting_on,
         } = &mut self.visible;
-        if *waiting == 0 {
+        if BATCH && *waiting == 0 {
             *waiting_on = *surface;
         }
+        // Slices, not the vectors: the pixel loop keeps their addresses in
+        // registers instead of reloading them after every store.
+        let (index, carried) = (&mut index[..], &mut carried[..]);
         // The batch's pixels so far, always fewer than `BATCH_PIXELS`: a count
         // in a register, where `Vec::push` would reload the length each pixel.
         let (mut n, before) = (*waiting, *waiting);

@@ -287,10 +287,13 @@ pub fn draw_polygon_rows<V: Varying>(
             continue;
         }
         let skipped = (first as i64 - l.x as i64) as usize;
+        // An exclusive range (last < bounds.x.end) and the row's y read once:
+        // the pixel loop then keeps both in registers.
+        let (columns, y) = (first..last + 1, l.y);
         if n as usize > RUNNING_SUM_LIMIT {
             let mut steps = Steps::new(*l, *r, n as usize);
             steps.skip_to(skipped);
-            for (x, p) in (first..=last).zip(steps) {
+            for (x, p) in columns.zip(steps) {
                 plot(Pixel { x, ..p });
             }
             continue;
@@ -299,8 +302,8 @@ pub fn draw_polygon_rows<V: Varying>(
         for _ in 0..skipped {
             sum.advance();
         }
-        for x in first..=last {
-            plot(sum.at(x, l.y));
+        for x in columns {
+            plot(sum.at(x, y));
             sum.advance();
         }
     }
