@@ -8,7 +8,7 @@ use crate::extensions::normal_map::TangentFrame;
 use crate::extensions::texture::Model;
 use crate::pipeline::bands::CHUNK;
 use crate::pipeline::clip::ScreenVertex;
-use crate::pipeline::draw::{Join, Stats, Vertices};
+use crate::pipeline::draw::{InTurn, Join, Stats, Vertices};
 use crate::pipeline::{Camera, Frame, Mesh, Target};
 use std::ops::Range;
 use std::time::Instant;
@@ -50,6 +50,7 @@ fn draw_bands(
     (ends, times): (&[u32], &mut [f64]),
     target: Target,
     shared: Shared,
+    join: &impl Join,
 ) {
     let Shared {
         inputs,
@@ -70,9 +71,9 @@ fn draw_bands(
             let (first, second) = pipelines.split_at_mut(half);
             let (ends, later) = ends.split_at(half);
             let (times, later_times) = times.split_at_mut(half);
-            rayon::join(
-                || draw_bands(first, (ends, times), top, shared),
-                || draw_bands(second, (later, later_times), bottom, shared),
+            join.join(
+                || draw_bands(first, (ends, times), top, shared, join),
+                || draw_bands(second, (later, later_times), bottom, shared, join),
             );
         }
     }
@@ -141,11 +142,36 @@ impl Parallel {
     /// vertices and its first faces: the tangent frames and the groups of faces
     /// the bands pass over ([`Vertices::group_faces`]) were made from it.
     pub fn render(&mut self, inputs: &Inputs, mesh: &Mesh, camera: &Camera, frame: &mut Frame) {
-        let vertices = &mut self.vertices;
-        match &self.pool {
-            None => vertices.prepare(mesh, camera),
-            Some(pool) => pool.install(|| vertices.prepare_split(mesh, camera, &Rayon)),
+        // The frame enters the pool once: each entry wakes its threads and
+        // puts the caller to sleep, which costs more than a small frame draws.
+        match self.pool.take() {
+            None => self.prepare_and_draw(inputs, mesh, camera, frame, &InTurn),
+            Some(pool) => {
+                pool.install(|| self.prepare_and_draw(inputs, mesh, camera, frame, &Rayon));
+                self.pool = Some(pool);
+            }
         }
+        // Each band decides about every triangle alike; pixels are its own.
+        let mut stats = self.pipelines[0].stats();
+        for p in &self.pipelines[1..] {
+            let s = p.stats();
+            stats.pixels_written += s.pixels_written;
+            stats.depth_rejected += s.depth_rejected;
+        }
+        self.stats = stats;
+    }
+
+    /// The frame's vertices prepared, the bands balanced, and each band drawn,
+    /// the bands side by side as `join` runs them.
+    fn prepare_and_draw(
+        &mut self,
+        inputs: &Inputs,
+        mesh: &Mesh,
+        camera: &Camera,
+        frame: &mut Frame,
+        join: &impl Join,
+    ) {
+        self.vertices.prepare_split(mesh, camera, join);
         self.balance(camera);
         let inputs = &Inputs {
             frames: &self.frames,
@@ -159,20 +185,8 @@ impl Parallel {
             camera,
             vertices: &self.vertices,
         };
-        let pipelines = &mut self.pipelines[..];
-        let (bands, target) = ((&self.ends[..], &mut self.times[..]), frame.target());
-        match &self.pool {
-            None => draw_bands(pipelines, bands, target, shared),
-            Some(pool) => pool.install(|| draw_bands(pipelines, bands, target, shared)),
-        }
-        // Each band decides about every triangle alike; pixels are its own.
-        let mut stats = self.pipelines[0].stats();
-        for p in &self.pipelines[1..] {
-            let s = p.stats();
-            stats.pixels_written += s.pixels_written;
-            stats.depth_rejected += s.depth_rejected;
-        }
-        self.stats = stats;
+        let bands = (&self.ends[..], &mut self.times[..]);
+        draw_bands(&mut self.pipelines, bands, frame.target(), shared, join);
     }
 
     /// Ends the bands where each holds about the same work: a row's pixels, and
