@@ -44,9 +44,9 @@ pub struct Pipeline<V: Varying, I: Interpolation = Perspective, R: Rasterizer = 
     /// The mesh's vertices as this frame sees them, when [`Pipeline::draw`]
     /// prepares them itself.
     vertices: Vertices,
-    /// Each vertex as the rasterizer places it ([`Rasterizer::place`]), with
-    /// its 1/z beside it (one read per corner), when the mesh is in full view.
-    places: Vec<Placed<R::Place, Nothing>>,
+    /// Each vertex as the rasterizer places it ([`Rasterizer::place`]), when the
+    /// mesh is in full view.
+    places: Vec<R::Place>,
     /// The faces a band of a frame in full view draws, as runs of face indices
     /// (each with whether its faces may lie beyond the band), and the chunks of
     /// vertices they name ([`FaceGroups`]).
@@ -357,15 +357,11 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         }
         if in_view {
             let v = &view.viewport;
-            let place = |s: &ScreenVertex<Nothing>| Placed {
-                place: self.raster.place(s.x, s.y, v),
-                zinv: s.zinv,
-                varying: Nothing {},
-            };
+            let place = |s: &ScreenVertex<Nothing>| self.raster.place(s.x, s.y, v);
             if grouped.is_some() {
                 // Only the chunks this band's faces name; the others keep
                 // whatever they held, unread.
-                places.resize(screen.len(), Placed::default());
+                places.resize(screen.len(), R::Place::default());
                 for (k, _) in named.iter().enumerate().filter(|(_, &n)| n) {
                     let chunk = k * CHUNK..((k + 1) * CHUNK).min(screen.len());
                     for (p, s) in places[chunk.clone()].iter_mut().zip(&screen[chunk]) {
@@ -422,9 +418,9 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
                     }
                     Primitive::Polygons if in_view => {
                         let corners = [0, 1, 2].map(|k| {
-                            let Placed { place, zinv, .. } = places[at(k)];
+                            let zinv = screen[at(k)].zinv;
                             Placed {
-                                place,
+                                place: places[at(k)],
                                 zinv,
                                 varying: I::encode(zinv, varyings[k]),
                             }
@@ -553,7 +549,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
                     if let Some(color) = color.as_deref_mut() {
                         let batch = Batch {
                             stage,
-                            surface,
+                            surface: &*waiting_on,
                             index,
                             carried,
                         };
