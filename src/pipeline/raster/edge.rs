@@ -116,6 +116,20 @@ fn triangle<V: Varying>(
     plot: &mut impl FnMut(Pixel<V>),
 ) {
     let [a, mut b, mut c] = corners;
+    // Pixels whose centres the bounding box contains, within the bounds: the
+    // first centre at or after the box's least corner, the last at or before its
+    // greatest. Most triangles of a fine mesh contain no centre and end here.
+    let (s, h) = (SUBPIXEL, SUBPIXEL / 2);
+    let first_centre = |least: i64| (least - h + s - 1).div_euclid(s);
+    let last_centre = |greatest: i64| (greatest - h).div_euclid(s);
+    let bounds = &viewport.bounds;
+    let first_i = first_centre(a.x.min(b.x).min(c.x)).max(bounds.x.start as i64);
+    let last_i = last_centre(a.x.max(b.x).max(c.x)).min(bounds.x.end as i64 - 1);
+    let first_j = first_centre(a.y.min(b.y).min(c.y)).max(bounds.y.start as i64);
+    let last_j = last_centre(a.y.max(b.y).max(c.y)).min(bounds.y.end as i64 - 1);
+    if first_i > last_i || first_j > last_j {
+        return;
+    }
     let area = Edge::new(a.x, a.y, b.x, b.y).at(a.x, a.y, c.x, c.y);
     if area == 0 {
         return; // zero area covers nothing
@@ -130,20 +144,6 @@ fn triangle<V: Varying>(
         (Edge::new(c.x, c.y, a.x, a.y), c),
         (Edge::new(a.x, a.y, b.x, b.y), a),
     ];
-    // Pixels whose centres the bounding box contains, within the bounds.
-    let (s, h) = (SUBPIXEL, SUBPIXEL / 2);
-    let min_x = a.x.min(b.x).min(c.x);
-    let max_x = a.x.max(b.x).max(c.x);
-    let min_y = a.y.min(b.y).min(c.y);
-    let max_y = a.y.max(b.y).max(c.y);
-    let bounds = &viewport.bounds;
-    let first_i = (min_x - h).div_euclid(s).max(bounds.x.start as i64);
-    let last_i = (max_x - h).div_euclid(s).min(bounds.x.end as i64 - 1);
-    let first_j = (min_y - h).div_euclid(s).max(bounds.y.start as i64);
-    let last_j = (max_y - h).div_euclid(s).min(bounds.y.end as i64 - 1);
-    if first_i > last_i || first_j > last_j {
-        return;
-    }
     let inv_area = 1.0 / area as f32;
     let columns = last_i - first_i;
     let weighted = |e: [i64; 3], i: i64, j: i64| {
@@ -354,18 +354,22 @@ mod tests {
         assert!(covered(&[(1.0, 1.0), (2.0, 2.0), (3.0, 3.0)]).is_empty());
     }
 
+    /// Numbers in 0..range from an xorshift generator: the same every run.
+    fn xorshift(mut seed: u64) -> impl FnMut(i64) -> i64 {
+        move |range| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed % range as u64) as i64
+        }
+    }
+
     #[test]
     fn scanning_a_narrow_box_covers_what_solving_each_row_covers() {
         // Random triangles up to 20 pixels across, snapped anywhere on the
         // sub-pixel grid (edges through centres included): the centre-by-centre
         // scan and the per-row solve give the same pixels with the same bits.
-        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = |range: i64| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed % range as u64) as i64
-        };
+        let mut next = xorshift(0x9e37_79b9_7f4a_7c15u64);
         let view = viewport(40, 40);
         let mut drawn = 0;
         for _ in 0..20_000 {
@@ -396,6 +400,54 @@ mod tests {
             drawn += scanned.len();
         }
         assert!(drawn > 100_000, "{drawn} pixels");
+    }
+
+    #[test]
+    fn the_box_of_centres_misses_no_covered_centre() {
+        // Tiny triangles with corners on a grid of quarter pixels, so that many
+        // corners and edges fall exactly on pixel centres: the pixels drawn are
+        // those found by testing every centre of the viewport.
+        let mut next = xorshift(0x2545_f491_4f6c_dd1du64);
+        let view = viewport(8, 8);
+        let (mut drawn, mut empty) = (0, 0);
+        for _ in 0..20_000 {
+            let (x0, y0) = (2 + next(4), 2 + next(4));
+            let mut corner = || Snapped {
+                x: (4 * x0 + next(9) - 4) * SUBPIXEL / 4,
+                y: (4 * y0 + next(9) - 4) * SUBPIXEL / 4,
+                zinv: 1.0,
+                varying: Nothing {},
+            };
+            let tri = [corner(), corner(), corner()];
+            let mut got = Vec::new();
+            triangle(tri, &view, SMALL_SPAN, &mut |p| got.push((p.x, p.y)));
+            got.sort();
+            let [a, mut b, mut c] = tri;
+            if Edge::new(a.x, a.y, b.x, b.y).at(a.x, a.y, c.x, c.y) < 0 {
+                std::mem::swap(&mut b, &mut c);
+            }
+            let mut want = Vec::new();
+            for (j, i) in (0..8).flat_map(|j| (0..8).map(move |i| (j, i))) {
+                let (px, py) = (SUBPIXEL * i + SUBPIXEL / 2, SUBPIXEL * j + SUBPIXEL / 2);
+                let inside = [(a, b, c), (b, c, a), (c, a, b)].iter().all(|(_, p, q)| {
+                    let edge = Edge::new(p.x, p.y, q.x, q.y);
+                    edge.at(p.x, p.y, px, py) >= edge.bias
+                });
+                let area = Edge::new(a.x, a.y, b.x, b.y).at(a.x, a.y, c.x, c.y);
+                if inside && area != 0 {
+                    want.push((i as i32, j as i32));
+                }
+            }
+            want.sort();
+            assert_eq!(got, want, "{tri:?}");
+            drawn += got.len();
+            empty += got.is_empty() as usize;
+        }
+        // Both kinds are common: triangles that cover centres and ones that cover none.
+        assert!(
+            drawn > 8_000 && empty > 5_000,
+            "{drawn} pixels, {empty} empty"
+        );
     }
 
     #[test]
