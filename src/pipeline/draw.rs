@@ -397,6 +397,17 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
                         continue;
                     }
                 }
+                // A triangle the rasterizer says covers nothing (most of a fine
+                // mesh's, with the exact one) is passed over before its surface
+                // and vertices are shaded.
+                let placed = match in_view {
+                    true => face.vertices.map(|v| places[v as usize]),
+                    false => Default::default(),
+                };
+                if in_view && self.raster.misses(placed, &view.viewport) {
+                    self.stats.drawn += 1;
+                    continue;
+                }
                 let surface = Surface::of(mesh, index);
                 let varyings =
                     [0, 1, 2].map(|k| stage.vertex_shader(&mesh.vertex(face, k), &surface));
@@ -420,7 +431,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
                         let corners = [0, 1, 2].map(|k| {
                             let zinv = screen[at(k)].zinv;
                             Placed {
-                                place: places[at(k)],
+                                place: placed[k],
                                 zinv,
                                 varying: I::encode(zinv, varyings[k]),
                             }

@@ -107,6 +107,49 @@ impl Edge {
     }
 }
 
+/// The pixels whose centres a triangle's bounding box contains, within the
+/// bounds: from the first centre at or after its least corner to the last at or
+/// before its greatest.
+struct CentreBox {
+    first_i: i64,
+    last_i: i64,
+    first_j: i64,
+    last_j: i64,
+}
+
+impl CentreBox {
+    /// The first column (or row) of centres at or after `least`.
+    #[inline]
+    fn first(least: i64) -> i64 {
+        (least - SUBPIXEL / 2 + SUBPIXEL - 1).div_euclid(SUBPIXEL)
+    }
+
+    /// The last column (or row) of centres at or before `greatest`.
+    #[inline]
+    fn last(greatest: i64) -> i64 {
+        (greatest - SUBPIXEL / 2).div_euclid(SUBPIXEL)
+    }
+
+    /// The box of the corners `(x, y)` on the sub-pixel grid; none if it holds
+    /// no centre, as for most triangles of a fine mesh.
+    #[inline]
+    fn of(corners: [(i64, i64); 3], viewport: &Viewport) -> Option<CentreBox> {
+        let (first, last) = (CentreBox::first, CentreBox::last);
+        let [a, b, c] = corners;
+        let bounds = &viewport.bounds;
+        let first_i = first(a.0.min(b.0).min(c.0)).max(bounds.x.start as i64);
+        let last_i = last(a.0.max(b.0).max(c.0)).min(bounds.x.end as i64 - 1);
+        let first_j = first(a.1.min(b.1).min(c.1)).max(bounds.y.start as i64);
+        let last_j = last(a.1.max(b.1).max(c.1)).min(bounds.y.end as i64 - 1);
+        (first_i <= last_i && first_j <= last_j).then_some(CentreBox {
+            first_i,
+            last_i,
+            first_j,
+            last_j,
+        })
+    }
+}
+
 /// Rasterizes one triangle with the rules above; a box narrower than `small_span`
 /// pixels is scanned centre by centre ([`SMALL_SPAN`]).
 fn triangle<V: Varying>(
@@ -116,20 +159,16 @@ fn triangle<V: Varying>(
     plot: &mut impl FnMut(Pixel<V>),
 ) {
     let [a, mut b, mut c] = corners;
-    // Pixels whose centres the bounding box contains, within the bounds: the
-    // first centre at or after the box's least corner, the last at or before its
-    // greatest. Most triangles of a fine mesh contain no centre and end here.
-    let (s, h) = (SUBPIXEL, SUBPIXEL / 2);
-    let first_centre = |least: i64| (least - h + s - 1).div_euclid(s);
-    let last_centre = |greatest: i64| (greatest - h).div_euclid(s);
-    let bounds = &viewport.bounds;
-    let first_i = first_centre(a.x.min(b.x).min(c.x)).max(bounds.x.start as i64);
-    let last_i = last_centre(a.x.max(b.x).max(c.x)).min(bounds.x.end as i64 - 1);
-    let first_j = first_centre(a.y.min(b.y).min(c.y)).max(bounds.y.start as i64);
-    let last_j = last_centre(a.y.max(b.y).max(c.y)).min(bounds.y.end as i64 - 1);
-    if first_i > last_i || first_j > last_j {
+    let Some(CentreBox {
+        first_i,
+        last_i,
+        first_j,
+        last_j,
+    }) = CentreBox::of([(a.x, a.y), (b.x, b.y), (c.x, c.y)], viewport)
+    else {
         return;
-    }
+    };
+    let (s, h) = (SUBPIXEL, SUBPIXEL / 2);
     let area = Edge::new(a.x, a.y, b.x, b.y).at(a.x, a.y, c.x, c.y);
     if area == 0 {
         return; // zero area covers nothing
@@ -260,6 +299,18 @@ impl Rasterizer for EdgeRaster {
             round_to_i64(x * SUBPIXEL as f32),
             round_to_i64(y * SUBPIXEL as f32),
         )
+    }
+
+    /// No pixel centre in the triangle's bounding box (the bounds aside: a
+    /// triangle the pipeline asks about is in view).
+    #[inline]
+    fn misses(&self, places: [(i64, i64); 3], _: &Viewport) -> bool {
+        let [a, b, c] = places;
+        let none_between = |p: i64, q: i64, r: i64| {
+            let (least, greatest) = (p.min(q).min(r), p.max(q).max(r));
+            CentreBox::last(greatest) < CentreBox::first(least)
+        };
+        none_between(a.0, b.0, c.0) || none_between(a.1, b.1, c.1)
     }
 
     fn triangle<V: Varying>(
@@ -409,7 +460,7 @@ mod tests {
         // those found by testing every centre of the viewport.
         let mut next = xorshift(0x2545_f491_4f6c_dd1du64);
         let view = viewport(8, 8);
-        let (mut drawn, mut empty) = (0, 0);
+        let (mut drawn, mut empty, mut passed_over) = (0, 0, 0);
         for _ in 0..20_000 {
             let (x0, y0) = (2 + next(4), 2 + next(4));
             let mut corner = || Snapped {
@@ -440,13 +491,19 @@ mod tests {
             }
             want.sort();
             assert_eq!(got, want, "{tri:?}");
+            // The pipeline's question before shading: never yes for a triangle
+            // that covers a pixel.
+            let missed = EdgeRaster.misses(tri.map(|c| (c.x, c.y)), &view);
+            assert!(!missed || got.is_empty(), "{tri:?}");
             drawn += got.len();
             empty += got.is_empty() as usize;
+            passed_over += missed as usize;
         }
-        // Both kinds are common: triangles that cover centres and ones that cover none.
+        // Both kinds are common: triangles that cover centres and ones that
+        // cover none, some of which are told apart before any setup.
         assert!(
-            drawn > 8_000 && empty > 5_000,
-            "{drawn} pixels, {empty} empty"
+            drawn > 8_000 && empty > 5_000 && passed_over > 1_000,
+            "{drawn} pixels, {empty} empty, {passed_over} passed over"
         );
     }
 

@@ -102,6 +102,14 @@ pub trait Rasterizer: Copy + Default + Send + 'static {
         let _ = (scratch, rows);
     }
 
+    /// Whether a triangle placed at `places` surely covers no pixel, so that
+    /// the pipeline can pass it over before shading its vertices. A rasterizer
+    /// that cannot tell cheaply answers no.
+    fn misses(&self, places: [Self::Place; 3], viewport: &Viewport) -> bool {
+        let _ = (places, viewport);
+        false
+    }
+
     /// [`Rasterizer::polygon`] for a triangle whose corners are placed already.
     fn triangle<V: Varying>(
         &self,
