@@ -159,13 +159,17 @@ pub fn chunk_rows(screen: &[ScreenVertex<Nothing>], rows: &mut [(f32, f32)]) {
 
 /// The rows a group whose vertices are in `chunks` lies in, if it names any.
 pub fn group_rows(chunks: &[u32], rows: &[(f32, f32)]) -> Option<(f32, f32)> {
-    let mut bounds = None;
-    for &c in chunks {
+    let (&first, rest) = chunks.split_first()?;
+    let mut bounds = *rows.get(first as usize)?;
+    for &c in rest {
         let &(a, b) = rows.get(c as usize)?;
-        let (lo, hi) = bounds.unwrap_or((a, b));
-        bounds = Some((lo.min(a), hi.max(b)));
+        // Plain comparisons, as in `chunk_rows`: never NaN.
+        bounds = (
+            if a < bounds.0 { a } else { bounds.0 },
+            if b > bounds.1 { b } else { bounds.1 },
+        );
     }
-    bounds
+    Some(bounds)
 }
 
 #[cfg(test)]

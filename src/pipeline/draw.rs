@@ -390,8 +390,11 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
                     }
                 }
                 if pass_over {
+                    // Plain comparisons: the rows of vertices in view are never NaN.
                     let [a, b, c] = face.vertices.map(|v| screen[v as usize].y);
-                    if a.max(b).max(c) < top || a.min(b).min(c) > bottom {
+                    let above = (a < top) & (b < top) & (c < top);
+                    let below = (a > bottom) & (b > bottom) & (c > bottom);
+                    if above | below {
                         // In full view it is drawn, by the band its rows are in.
                         self.stats.drawn += 1;
                         continue;
