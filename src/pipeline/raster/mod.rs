@@ -103,12 +103,8 @@ pub trait Rasterizer: Copy + Default + Send + 'static {
     }
 
     /// Whether a triangle placed at `places` surely covers no pixel, so that
-    /// the pipeline can pass it over before shading its vertices. A rasterizer
-    /// that cannot tell cheaply answers no.
-    fn misses(&self, places: [Self::Place; 3], viewport: &Viewport) -> bool {
-        let _ = (places, viewport);
-        false
-    }
+    /// the pipeline can pass it over before shading its vertices.
+    fn misses(&self, places: [Self::Place; 3], viewport: &Viewport) -> bool;
 
     /// [`Rasterizer::polygon`] for a triangle whose corners are placed already.
     fn triangle<V: Varying>(

@@ -80,6 +80,11 @@ impl Rasterizer for RowRaster {
 
     type Place = (i32, i32);
 
+    /// Never: `ComputePolygonRows` gives every triangle the rows its corners span.
+    fn misses(&self, _: [(i32, i32); 3], _: &Viewport) -> bool {
+        false
+    }
+
     #[inline]
     fn place(&self, x: f32, y: f32, viewport: &Viewport) -> (i32, i32) {
         (
