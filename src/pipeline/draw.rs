@@ -53,9 +53,6 @@ pub struct Pipeline<V: Varying, I: Interpolation = Perspective, R: Rasterizer = 
     runs: Vec<(Range<usize>, bool)>,
     named: Vec<bool>,
     visible: Visible<V>,
-    /// For a stage whose per-pixel struct is empty, the colour of the last
-    /// face it shaded: the same on every pixel of the faces that shade alike.
-    flat: Option<(Surface, u32)>,
     stats: Stats,
     interpolation: PhantomData<I>,
 }
@@ -212,7 +209,6 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Default for Pipeline<V, I, R> 
                 waiting: 0,
                 surface: Surface::default(),
             },
-            flat: None,
             stats: Stats::default(),
             interpolation: PhantomData,
         }
@@ -324,7 +320,6 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         if BATCH {
             self.visible.reserve();
         }
-        self.flat = None; // the stage may have changed since the last frame
         self.raster
             .reserve(&mut self.scratch, camera.height as usize);
         let camera_space = &vertices.camera_space[..];
@@ -525,11 +520,6 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         if BATCH && !S::shades_alike(&self.visible.surface, surface) {
             self.shade_waiting(stage, target);
         }
-        // An empty per-pixel struct: the pixel shader's colour is the face's.
-        let flat = match size_of::<V>() {
-            0 if !BATCH => self.flat_colour(stage, surface),
-            _ => 0,
-        };
         let (width, first_row) = (target.width as usize, target.rows.start as usize);
         // Empty unless the stage tests depth (`draw` checked it has a buffer then).
         let depth_buffer = target.depth.as_deref_mut().unwrap_or_default();
@@ -584,10 +574,8 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
             } else if depth_test::<S>(depth_buffer, i, p.zinv) {
                 written += 1;
                 if let Some(color) = color.as_deref_mut() {
-                    color[i] = match size_of::<V>() {
-                        0 => flat,
-                        _ => pack(stage.pixel_shader(&I::decode(p.zinv, p.varying), surface)),
-                    };
+                    let varying = I::decode(p.zinv, p.varying);
+                    color[i] = pack(stage.pixel_shader(&varying, surface));
                 }
             } else {
                 rejected += 1;
@@ -598,20 +586,6 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         self.stats.pixels_written += written + n as u64 - before as u64;
         self.stats.depth_rejected += rejected;
         *waiting = n;
-    }
-
-    /// The colour a stage whose per-pixel struct is empty gives every pixel of
-    /// a face on `surface`: shaded once, and again only for a face that does not
-    /// shade alike.
-    fn flat_colour<S: Stage<Varying = V>>(&mut self, stage: &S, surface: &Surface) -> u32 {
-        match self.flat {
-            Some((last, colour)) if S::shades_alike(&last, surface) => colour,
-            _ => {
-                let colour = pack(stage.pixel_shader(&V::default(), surface));
-                self.flat = Some((*surface, colour));
-                colour
-            }
-        }
     }
 
     /// The pixels the batch holds, if any, shaded into the target.
@@ -1095,13 +1069,8 @@ mod tests {
         // corner is projected and placed for its face. Same bytes, both
         // rasterizers, depth and light per pixel.
         let (_, camera) = wall();
-        let mut seed = 0x2545_f491_4f6c_dd1du64;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 40) as f32 / (1u64 << 24) as f32
-        };
+        let mut random = crate::pipeline::xorshift(0x2545_f491_4f6c_dd1du64);
+        let mut next = || (random() >> 40) as f32 / (1u64 << 24) as f32;
         let mut mesh = Mesh::default();
         for k in 0..400 {
             // Within 0.8 of the axis at z >= 2: inside the 100-pixel screen.
@@ -1320,52 +1289,6 @@ mod tests {
             // alone to a full red.
             assert!(distinct.len() > 100, "{} colours", distinct.len());
         }
-    }
-
-    #[test]
-    fn a_face_colour_kept_for_faces_alike_is_found_again_for_others() {
-        // A stage with an empty per-pixel struct whose colour is its own field
-        // and the face's reflectance: the colour found for the first face is
-        // the second's (they shade alike), and a new frame with another
-        // stage, or a face of another colour, finds its own.
-        use crate::pipeline::mesh::{Material, Vertex};
-        struct Tinted(Vec3);
-        impl Stage for Tinted {
-            type Varying = Nothing;
-            const PRIMITIVE: Primitive = Primitive::Polygons;
-            const DEPTH_TEST: bool = false;
-            fn vertex_shader(&self, _: &Vertex, _: &Surface) -> Nothing {
-                Nothing {}
-            }
-            fn pixel_shader(&self, _: &Nothing, surface: &Surface) -> Vec3 {
-                self.0 * surface.reflectance
-            }
-            fn shades_alike(a: &Surface, b: &Surface) -> bool {
-                a.reflectance == b.reflectance
-            }
-        }
-        let (mut mesh, camera) = wall();
-        let mut pipeline = Pipeline::<Nothing>::new();
-        let mut frame = Frame::default();
-        let mut colours = |pipeline: &mut Pipeline<Nothing>, stage: &Tinted, mesh: &Mesh| {
-            pipeline.render(stage, mesh, &camera, &mut frame);
-            let mut seen: Vec<u32> = frame.color.iter().copied().filter(|&c| c != 0).collect();
-            seen.sort();
-            seen.dedup();
-            seen
-        };
-        let grey = pack(Vec3::splat(0.75));
-        assert_eq!(colours(&mut pipeline, &Tinted(Vec3::ONE), &mesh), [grey]);
-        let red = pack(Vec3::new(0.75, 0.0, 0.0));
-        assert_eq!(colours(&mut pipeline, &Tinted(Vec3::X), &mesh), [red]);
-        mesh.materials.push(Material {
-            color: Vec3::splat(0.5),
-        });
-        mesh.faces[1].material = 1;
-        let half = pack(Vec3::new(0.5, 0.0, 0.0));
-        let mut both = [red, half];
-        both.sort();
-        assert_eq!(colours(&mut pipeline, &Tinted(Vec3::X), &mesh), both);
     }
 
     #[test]

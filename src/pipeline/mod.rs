@@ -43,3 +43,14 @@ pub use stage::{
     Wireframe,
 };
 pub use target::{Frame, Target};
+
+/// The unit tests' random numbers: an xorshift generator, the same every run.
+#[cfg(test)]
+fn xorshift(mut seed: u64) -> impl FnMut() -> u64 {
+    move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        seed
+    }
+}

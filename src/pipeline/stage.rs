@@ -229,11 +229,6 @@ impl Stage for Filled {
     fn pixel_shader(&self, _: &Nothing, surface: &Surface) -> Vec3 {
         surface.reflectance
     }
-
-    /// The colour is the reflectance alone, bit for bit.
-    fn shades_alike(a: &Surface, b: &Surface) -> bool {
-        a.reflectance.to_array().map(f32::to_bits) == b.reflectance.to_array().map(f32::to_bits)
-    }
 }
 
 /// Section 5: filled triangles behind a depth buffer of 1/z.
@@ -251,11 +246,6 @@ impl Stage for Depth {
 
     fn pixel_shader(&self, _: &Nothing, surface: &Surface) -> Vec3 {
         surface.reflectance
-    }
-
-    /// The colour is the reflectance alone, bit for bit.
-    fn shades_alike(a: &Surface, b: &Surface) -> bool {
-        a.reflectance.to_array().map(f32::to_bits) == b.reflectance.to_array().map(f32::to_bits)
     }
 }
 

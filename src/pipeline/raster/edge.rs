@@ -115,30 +115,37 @@ struct CentreBox {
     last_j: i64,
 }
 
+/// The first and last column (or row) of centres between the least and the
+/// greatest of three coordinates on the sub-pixel grid: the first at or after
+/// the least, the last at or before the greatest (before the first if none).
+#[inline]
+fn centres_between(p: i64, q: i64, r: i64) -> (i64, i64) {
+    let (least, greatest) = (p.min(q).min(r), p.max(q).max(r));
+    (
+        (least - SUBPIXEL / 2 + SUBPIXEL - 1).div_euclid(SUBPIXEL),
+        (greatest - SUBPIXEL / 2).div_euclid(SUBPIXEL),
+    )
+}
+
 impl CentreBox {
-    /// The first column (or row) of centres at or after `least`.
-    #[inline]
-    fn first(least: i64) -> i64 {
-        (least - SUBPIXEL / 2 + SUBPIXEL - 1).div_euclid(SUBPIXEL)
-    }
-
-    /// The last column (or row) of centres at or before `greatest`.
-    #[inline]
-    fn last(greatest: i64) -> i64 {
-        (greatest - SUBPIXEL / 2).div_euclid(SUBPIXEL)
-    }
-
     /// The box of the corners `(x, y)` on the sub-pixel grid; none if it holds
     /// no centre, as for most triangles of a fine mesh.
     #[inline]
     fn of(corners: [(i64, i64); 3], viewport: &Viewport) -> Option<CentreBox> {
-        let (first, last) = (CentreBox::first, CentreBox::last);
         let [a, b, c] = corners;
+        let ((first_i, last_i), (first_j, last_j)) = (
+            centres_between(a.0, b.0, c.0),
+            centres_between(a.1, b.1, c.1),
+        );
         let bounds = &viewport.bounds;
-        let first_i = first(a.0.min(b.0).min(c.0)).max(bounds.x.start as i64);
-        let last_i = last(a.0.max(b.0).max(c.0)).min(bounds.x.end as i64 - 1);
-        let first_j = first(a.1.min(b.1).min(c.1)).max(bounds.y.start as i64);
-        let last_j = last(a.1.max(b.1).max(c.1)).min(bounds.y.end as i64 - 1);
+        let (first_i, last_i) = (
+            first_i.max(bounds.x.start as i64),
+            last_i.min(bounds.x.end as i64 - 1),
+        );
+        let (first_j, last_j) = (
+            first_j.max(bounds.y.start as i64),
+            last_j.min(bounds.y.end as i64 - 1),
+        );
         (first_i <= last_i && first_j <= last_j).then_some(CentreBox {
             first_i,
             last_i,
@@ -307,10 +314,11 @@ impl Rasterizer for EdgeRaster {
     #[inline]
     fn misses(&self, places: [(i64, i64); 3], _: &Viewport) -> bool {
         let [a, b, c] = places;
-        let none_between = |p: i64, q: i64, r: i64| {
-            let (least, greatest) = (p.min(q).min(r), p.max(q).max(r));
-            CentreBox::last(greatest) < CentreBox::first(least)
+        let none_between = |p, q, r| {
+            let (first, last) = centres_between(p, q, r);
+            last < first
         };
+        // The rows only if the columns hold a centre.
         none_between(a.0, b.0, c.0) || none_between(a.1, b.1, c.1)
     }
 
@@ -406,14 +414,10 @@ mod tests {
         assert!(covered(&[(1.0, 1.0), (2.0, 2.0), (3.0, 3.0)]).is_empty());
     }
 
-    /// Numbers in 0..range from an xorshift generator: the same every run.
-    fn xorshift(mut seed: u64) -> impl FnMut(i64) -> i64 {
-        move |range| {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed % range as u64) as i64
-        }
+    /// Numbers in 0..range, the same every run.
+    fn xorshift(seed: u64) -> impl FnMut(i64) -> i64 {
+        let mut next = crate::pipeline::xorshift(seed);
+        move |range| (next() % range as u64) as i64
     }
 
     #[test]
