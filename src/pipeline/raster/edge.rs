@@ -47,21 +47,21 @@ fn image_position(x: f32, y: f32, viewport: &Viewport) -> (f32, f32) {
 fn snap<V: Copy>(s: &ScreenVertex<V>, viewport: &Viewport) -> Snapped<V> {
     let (x, y) = EdgeRaster.place(s.x, s.y, viewport);
     Snapped {
-        x,
-        y,
+        x: x.into(),
+        y: y.into(),
         zinv: s.zinv,
         varying: s.varying,
     }
 }
 
-/// `v.round() as i64`, halves away from zero, without the library call
+/// `v.round() as i32`, halves away from zero, without the library call
 /// `f32::round` is on x86-64 before SSE4.1 (9 % of the samples for a million small
 /// triangles): truncate, then step by the remainder, which is exact in f32.
 #[inline]
-fn round_to_i64(v: f32) -> i64 {
-    let whole = v as i64;
+fn round_to_i32(v: f32) -> i32 {
+    let whole = v as i32;
     let rest = v - whole as f32;
-    whole.saturating_add((rest >= 0.5) as i64 - (rest <= -0.5) as i64)
+    whole.saturating_add((rest >= 0.5) as i32 - (rest <= -0.5) as i32)
 }
 
 /// The pixel a point lands on: the one containing it.
@@ -297,23 +297,26 @@ impl Rasterizer for EdgeRaster {
         }
     }
 
-    type Place = (i64, i64);
+    /// `i32`, half the bytes of the edge functions' `i64`, for the places a frame
+    /// keeps for all its vertices: a point of the guard band (one screen beyond
+    /// each side) of an image up to 4 million pixels a side fits, in 1/256 pixels.
+    type Place = (i32, i32);
 
     /// On the sub-pixel grid: `f X/Z + W/2` in 1/256 pixels, rounded.
     #[inline]
-    fn place(&self, x: f32, y: f32, viewport: &Viewport) -> (i64, i64) {
+    fn place(&self, x: f32, y: f32, viewport: &Viewport) -> (i32, i32) {
         let (x, y) = image_position(x, y, viewport);
         (
-            round_to_i64(x * SUBPIXEL as f32),
-            round_to_i64(y * SUBPIXEL as f32),
+            round_to_i32(x * SUBPIXEL as f32),
+            round_to_i32(y * SUBPIXEL as f32),
         )
     }
 
     /// No pixel centre in the triangle's bounding box (the bounds aside: a
     /// triangle the pipeline asks about is in view).
     #[inline]
-    fn misses(&self, places: [(i64, i64); 3], _: &Viewport) -> bool {
-        let [a, b, c] = places;
+    fn misses(&self, places: [(i32, i32); 3], _: &Viewport) -> bool {
+        let [a, b, c] = places.map(|(x, y)| (i64::from(x), i64::from(y)));
         let none_between = |p, q, r| {
             let (first, last) = centres_between(p, q, r);
             last < first
@@ -325,13 +328,13 @@ impl Rasterizer for EdgeRaster {
     fn triangle<V: Varying>(
         &self,
         _: &mut (),
-        corners: [Placed<(i64, i64), V>; 3],
+        corners: [Placed<(i32, i32), V>; 3],
         viewport: &Viewport,
         mut plot: impl FnMut(Pixel<V>),
     ) {
         let corners = corners.map(|c| Snapped {
-            x: c.place.0,
-            y: c.place.1,
+            x: c.place.0.into(),
+            y: c.place.1.into(),
             zinv: c.zinv,
             varying: c.varying,
         });
@@ -347,18 +350,18 @@ mod tests {
     use glam::Vec3;
 
     #[test]
-    fn round_to_i64_is_f32_round_for_every_value() {
+    fn round_to_i32_is_f32_round_for_every_value() {
         // Every 31st bit pattern (all signs, exponents, NaN and infinities), and
         // every value within 64 steps of each half from -4 to 4.
         for bits in (0..=u32::MAX).step_by(31) {
             let v = f32::from_bits(bits);
-            assert_eq!(round_to_i64(v), v.round() as i64, "{v:e} ({bits:#x})");
+            assert_eq!(round_to_i32(v), v.round() as i32, "{v:e} ({bits:#x})");
         }
         for half in -8..8 {
             let h = half as f32 + 0.5;
             for k in -64..=64 {
                 let v = f32::from_bits((h.to_bits() as i32 + k) as u32);
-                assert_eq!(round_to_i64(v), v.round() as i64, "{v:e}");
+                assert_eq!(round_to_i32(v), v.round() as i32, "{v:e}");
             }
         }
     }
@@ -498,7 +501,7 @@ mod tests {
             assert_eq!(got, want, "{tri:?}");
             // The pipeline's question before shading: never yes for a triangle
             // that covers a pixel.
-            let missed = EdgeRaster.misses(tri.map(|c| (c.x, c.y)), &view);
+            let missed = EdgeRaster.misses(tri.map(|c| (c.x as i32, c.y as i32)), &view);
             assert!(!missed || got.is_empty(), "{tri:?}");
             drawn += got.len();
             empty += got.is_empty() as usize;
