@@ -96,12 +96,24 @@ impl FaceGroups {
         self.starts.len().saturating_sub(1)
     }
 
+    /// The rows (from the screen's centre) of each group from `first` on, into
+    /// `out`, from the rows its chunks lie in this frame (`rows`): every band of
+    /// the frame reads them, so they are found once. A group that names too many
+    /// chunks gets every row.
+    pub fn group_rows(&self, first: usize, rows: &[(f32, f32)], out: &mut [(f32, f32)]) {
+        let starts = &self.starts[first..];
+        for (ends, out) in starts.windows(2).zip(out) {
+            let chunks = &self.chunks[ends[0] as usize..ends[1] as usize];
+            *out = group_rows(chunks, rows).unwrap_or((f32::NEG_INFINITY, f32::INFINITY));
+        }
+    }
+
     /// The faces of a band whose rows (from the screen's centre) are `bounds`,
-    /// of a mesh with `faces` faces whose chunks lie in `rows` this frame: as
-    /// runs of faces in the mesh's order, each with whether its faces may lie
-    /// beyond the band (to be tested one by one), and the chunks they name
-    /// (every chunk, if the groups are scattered). Returns how many faces it
-    /// passed over, wholly beyond the band.
+    /// of a mesh with `faces` faces whose groups lie in `rows` this frame
+    /// ([`FaceGroups::group_rows`]): as runs of faces in the mesh's order, each
+    /// with whether its faces may lie beyond the band (to be tested one by one),
+    /// and the chunks they name (every chunk, if the groups are scattered).
+    /// Returns how many faces it passed over, wholly beyond the band.
     pub fn select(
         &self,
         faces: usize,
@@ -113,17 +125,19 @@ impl FaceGroups {
         runs.clear();
         runs.reserve(self.count()); // in the first frame: no later one allocates
         named.clear();
-        named.resize(rows.len(), self.scattered);
+        named.resize(self.vertices.div_ceil(CHUNK), self.scattered);
         let mut passed = 0;
-        for (faces, chunks) in self.groups(faces) {
-            let rows = group_rows(chunks, rows);
-            if rows.is_some_and(|(low, high)| high < top || low > bottom) {
+        let groups = faces.div_ceil(GROUP).min(rows.len());
+        for (g, &(low, high)) in rows[..groups].iter().enumerate() {
+            let faces = g * GROUP..((g + 1) * GROUP).min(faces);
+            if high < top || low > bottom {
                 passed += faces.len() as u64;
                 continue;
             }
-            let beyond = rows.is_none_or(|(low, high)| low < top || high > bottom);
+            let beyond = low < top || high > bottom;
             if !self.scattered {
-                for &c in chunks {
+                let (from, to) = (self.starts[g] as usize, self.starts[g + 1] as usize);
+                for &c in &self.chunks[from..to] {
                     named[c as usize] = true;
                 }
             }

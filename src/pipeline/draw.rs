@@ -3,7 +3,7 @@
 //! every pixel goes through the depth test (for stages that have one) and the
 //! stage's pixel shader into the render target.
 
-use super::bands::{chunk_rows, FaceGroups, CHUNK};
+use super::bands::{chunk_rows, FaceGroups, CHUNK, GROUP};
 use super::camera::{Camera, Projection};
 use super::clip::{
     clip_near, clip_rect, clip_segment_near, clip_segment_rect, CameraVertex, Polygon, Rect,
@@ -861,6 +861,9 @@ pub struct Vertices {
     /// full view; empty otherwise.
     groups: FaceGroups,
     rows: Vec<(f32, f32)>,
+    /// The rows each group of faces lies in this frame, from its chunks', when
+    /// `rows` is not empty.
+    group_rows: Vec<(f32, f32)>,
 }
 
 impl Vertices {
@@ -885,11 +888,11 @@ impl Vertices {
         &self.rows
     }
 
-    /// The groups of faces and this frame's rows of each chunk of vertices, when
-    /// the mesh is grouped and in full view.
+    /// The groups of faces and this frame's rows of each group, when the mesh is
+    /// grouped and in full view.
     fn grouped(&self) -> Option<(&FaceGroups, &[(f32, f32)])> {
-        let rows = &self.rows[..];
-        (!rows.is_empty() && !self.screen.is_empty()).then_some((&self.groups, rows))
+        let rows = &self.group_rows[..];
+        (!self.rows.is_empty() && !self.screen.is_empty()).then_some((&self.groups, rows))
     }
 
     /// Takes every vertex of `mesh` to `camera`'s space and looks at where they
@@ -922,6 +925,11 @@ impl Vertices {
         if !(fit.inside && fit.in_front) {
             self.screen.clear();
             self.rows.clear();
+        }
+        self.group_rows.clear();
+        if !self.rows.is_empty() {
+            self.group_rows.resize(self.groups.count(), (0.0, 0.0));
+            rows_of_groups(&self.groups, 0, &self.rows, &mut self.group_rows, join);
         }
         self.fit = fit;
     }
@@ -985,6 +993,27 @@ fn project_all(
         chunk_rows(screen, rows);
     }
     fit
+}
+
+/// The rows of each group of faces from `first` on, into `out`, in parts split
+/// by `join`.
+fn rows_of_groups(
+    groups: &FaceGroups,
+    first: usize,
+    rows: &[(f32, f32)],
+    out: &mut [(f32, f32)],
+    join: &impl Join,
+) {
+    if out.len() > PART / GROUP {
+        let half = out.len() / 2;
+        let (a, b) = out.split_at_mut(half);
+        join.join(
+            || rows_of_groups(groups, first, rows, a, join),
+            || rows_of_groups(groups, first + half, rows, b, join),
+        );
+        return;
+    }
+    groups.group_rows(first, rows, out);
 }
 
 /// Two pieces of work that may run at once: `rayon::join` for the threads that
