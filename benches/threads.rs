@@ -1,7 +1,9 @@
 //! `cargo bench --features bench --bench threads`: the same frame drawn by one
 //! thread and by two, in bands (`--threads`), as issue #20 measures it: every stage
 //! of the box at 2000x2000, pixel-light at 500x500, and a million triangles with
-//! the exact rasterizer. Run it with two cores free (benches/sitting.sh pins it to
+//! the exact rasterizer; and a 2000x2000 frame with no faces, the clear alone,
+//! which bounds what two threads can gain on the stages whose frame is mostly
+//! the clear. Run it with two cores free (benches/sitting.sh pins it to
 //! cores 0 and 1). `RASTERLAB_RECORD=1` writes the medians to docs/bench/.
 
 mod common;
@@ -20,6 +22,7 @@ use rasterlab::{Figure, Frame, Mesh, StageName};
 fn threads(c: &mut Criterion, ids: &mut Vec<String>) {
     let box_ = cornell_box();
     let million = subdivide(&box_, 183);
+    let nothing = Mesh::default();
     let mut cases: Vec<(String, &Mesh, (u32, u32), Figure)> = Figure::FIGURES
         .iter()
         .map(|&f| {
@@ -43,6 +46,12 @@ fn threads(c: &mut Criterion, ids: &mut Vec<String>) {
         let name = format!("cornell:183 1920x1080, {}", figure.label());
         cases.push((name, &million, (1920, 1080), figure));
     }
+    cases.push((
+        "2000x2000, the clear alone".into(),
+        &nothing,
+        (2000, 2000),
+        Figure::of(StageName::Points),
+    ));
     let mut g = c.benchmark_group("threads");
     medians::short(&mut g, 20);
     for (name, mesh, size, figure) in cases {
