@@ -265,17 +265,22 @@ mod tests {
         assert!(!groups.fit(&prefix));
     }
 
-    #[test]
-    fn faces_naming_far_apart_vertices_are_not_bounded() {
-        let mut mesh = grid(90);
-        // Every other group's faces each name a vertex of their own row and of
-        // the last: 16 squares of vertices in 3 rows name more than 12 chunks.
+    /// `mesh` with every `nth` group's faces each naming a vertex of their own
+    /// row and of the last: 16 squares of vertices in 3 rows name more than 12
+    /// chunks.
+    fn scatter(mut mesh: Mesh, nth: usize) -> Mesh {
         let last = mesh.positions.len() as u32 - 1;
         for (k, face) in mesh.faces.iter_mut().enumerate() {
-            if (k / GROUP) % 2 == 1 {
+            if (k / GROUP) % nth == 1 {
                 face.vertices[0] = last - (k % GROUP) as u32 * CHUNK as u32;
             }
         }
+        mesh
+    }
+
+    #[test]
+    fn faces_naming_far_apart_vertices_are_not_bounded() {
+        let mesh = scatter(grid(90), 2);
         let (groups, rows) = (FaceGroups::of(&mesh), rows_of(&mesh));
         assert!(groups.scattered());
         let bounded = groups
@@ -284,5 +289,48 @@ mod tests {
             .count();
         assert_eq!(groups.groups(mesh.faces.len()).count(), 507);
         assert_eq!(bounded, 254);
+    }
+
+    #[test]
+    fn a_band_passes_over_only_faces_beyond_it_and_tests_those_that_may_be() {
+        for mesh in [grid(90), scatter(grid(90), 3)] {
+            let groups = FaceGroups::of(&mesh);
+            let mut rows = vec![(0.0, 0.0); groups.count()];
+            groups.group_rows(0, &rows_of(&mesh), &mut rows);
+            let (mut runs, mut named) = (Vec::new(), Vec::new());
+            for (top, bottom) in [(20.5, 40.5), (-10.0, 0.5), (89.5, 200.0), (45.0, 45.0)] {
+                let faces = mesh.faces.len();
+                let passed = groups.select(faces, &rows, (top, bottom), &mut runs, &mut named);
+                let mut chosen = vec![None; faces];
+                for (run, beyond) in &runs {
+                    for k in run.clone() {
+                        chosen[k] = Some(*beyond);
+                    }
+                }
+                let left = chosen.iter().filter(|c| c.is_none()).count();
+                assert_eq!(passed, left as u64);
+                for (face, chosen) in mesh.faces.iter().zip(&chosen) {
+                    let ys = face.vertices.map(|v| mesh.positions[v as usize].y);
+                    let beyond = ys.iter().all(|&y| y < top) || ys.iter().all(|&y| y > bottom);
+                    let within = ys.iter().all(|&y| top <= y && y <= bottom);
+                    match chosen {
+                        // Passed over: wholly beyond the band.
+                        None => assert!(beyond, "{ys:?} in {top} to {bottom}"),
+                        // Not tested: wholly within it, its vertices placed.
+                        Some(false) => {
+                            assert!(within, "{ys:?} in {top} to {bottom}");
+                            for v in face.vertices {
+                                assert!(named[v as usize / CHUNK]);
+                            }
+                        }
+                        Some(true) => {}
+                    }
+                }
+                // A band within the grid passes over most of it.
+                if bottom - top == 20.0 {
+                    assert!(left > faces / 2 && left < faces, "{left} of {faces}");
+                }
+            }
+        }
     }
 }
