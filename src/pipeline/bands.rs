@@ -78,8 +78,10 @@ impl FaceGroups {
     }
 
     /// The groups of a mesh with `faces` faces: each group's range of faces, and
-    /// the chunks its vertices are in (none if it names too many).
-    pub fn groups(&self, faces: usize) -> impl Iterator<Item = (Range<usize>, &[u32])> + '_ {
+    /// the chunks its vertices are in (none if it names too many). The tests'
+    /// view of them; `select` walks the same by index.
+    #[cfg(test)]
+    fn groups(&self, faces: usize) -> impl Iterator<Item = (Range<usize>, &[u32])> + '_ {
         self.starts
             .windows(2)
             .enumerate()
