@@ -106,7 +106,7 @@ impl FaceGroups {
         let starts = &self.starts[first..];
         for (ends, out) in starts.windows(2).zip(out) {
             let chunks = &self.chunks[ends[0] as usize..ends[1] as usize];
-            *out = group_rows(chunks, rows).unwrap_or((f32::NEG_INFINITY, f32::INFINITY));
+            *out = rows_of_chunks(chunks, rows).unwrap_or((f32::NEG_INFINITY, f32::INFINITY));
         }
     }
 
@@ -174,7 +174,7 @@ pub fn chunk_rows(screen: &[ScreenVertex<Nothing>], rows: &mut [(f32, f32)]) {
 }
 
 /// The rows a group whose vertices are in `chunks` lies in, if it names any.
-pub fn group_rows(chunks: &[u32], rows: &[(f32, f32)]) -> Option<(f32, f32)> {
+fn rows_of_chunks(chunks: &[u32], rows: &[(f32, f32)]) -> Option<(f32, f32)> {
     let (&first, rest) = chunks.split_first()?;
     let mut bounds = *rows.get(first as usize)?;
     for &c in rest {
@@ -242,7 +242,7 @@ mod tests {
         assert!(!groups.scattered() && groups.fit(&mesh));
         let mut seen = 0;
         for (faces, chunks) in groups.groups(mesh.faces.len()) {
-            let (low, high) = group_rows(chunks, &rows).expect("a grid names few chunks");
+            let (low, high) = rows_of_chunks(chunks, &rows).expect("a grid names few chunks");
             // 32 faces are 16 squares of one row of squares, or of two: two or
             // three rows of vertices, and chunks run from one row to the next.
             assert!(high - low <= 3.0, "{low} to {high}");
@@ -287,7 +287,7 @@ mod tests {
         assert!(groups.scattered());
         let bounded = groups
             .groups(mesh.faces.len())
-            .filter(|(_, chunks)| group_rows(chunks, &rows).is_some())
+            .filter(|(_, chunks)| rows_of_chunks(chunks, &rows).is_some())
             .count();
         assert_eq!(groups.groups(mesh.faces.len()).count(), 507);
         assert_eq!(bounded, 254);

@@ -862,7 +862,7 @@ pub struct Vertices {
     groups: FaceGroups,
     rows: Vec<(f32, f32)>,
     /// The rows each group of faces lies in this frame, from its chunks', when
-    /// `rows` is not empty.
+    /// `rows` is not empty; empty otherwise.
     group_rows: Vec<(f32, f32)>,
 }
 
@@ -892,7 +892,7 @@ impl Vertices {
     /// grouped and in full view.
     fn grouped(&self) -> Option<(&FaceGroups, &[(f32, f32)])> {
         let rows = &self.group_rows[..];
-        (!self.rows.is_empty() && !self.screen.is_empty()).then_some((&self.groups, rows))
+        (!rows.is_empty()).then_some((&self.groups, rows))
     }
 
     /// Takes every vertex of `mesh` to `camera`'s space and looks at where they
@@ -926,11 +926,12 @@ impl Vertices {
             self.screen.clear();
             self.rows.clear();
         }
-        self.group_rows.clear();
-        if !self.rows.is_empty() {
-            self.group_rows.resize(self.groups.count(), (0.0, 0.0));
-            rows_of_groups(&self.groups, 0, &self.rows, &mut self.group_rows, join);
-        }
+        let groups = match self.rows.is_empty() {
+            true => 0,
+            false => self.groups.count(),
+        };
+        self.group_rows.resize(groups, (0.0, 0.0));
+        rows_of_groups(&self.groups, 0, &self.rows, &mut self.group_rows, join);
         self.fit = fit;
     }
 }
