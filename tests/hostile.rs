@@ -289,11 +289,11 @@ fn devices_and_files_without_newlines_are_refused() {
     refused(&o, 2, "cannot read zero.txt: a device");
 }
 
-/// `args` run under an address-space limit of 3 GB (`ulimit -v`).
-fn run_in_3gb(dir: &Path, args: &str) -> Output {
+/// `args` run under an address-space limit of 2 GB (`ulimit -v`), less than a 16384x16384 frame with its depth buffer (2 GiB).
+fn run_in_2gb(dir: &Path, args: &str) -> Output {
     Command::new("sh")
         .current_dir(dir)
-        .args(["-c", &format!("ulimit -v 3000000 && exec {} {args}", bin())])
+        .args(["-c", &format!("ulimit -v 2000000 && exec {} {args}", bin())])
         .output()
         .unwrap()
 }
@@ -307,7 +307,7 @@ fn frames_larger_than_memory_are_refused_not_aborted() {
         "animate depth --size 16384x16384 -o big.gif",
         "raytrace --flat --size 16384x16384 -o big.png",
     ] {
-        let o = run_in_3gb(&dir, args);
+        let o = run_in_2gb(&dir, args);
         refused(&o, 1, "out of memory");
         assert!(err(&o).contains(" MB"), "{}", err(&o));
         assert!(fs::read_dir(&*dir).unwrap().next().is_none(), "{args}");
@@ -341,15 +341,15 @@ fn huge_images_are_refused_from_their_header() {
     png_header(&dir.join("shot.png"), 20000, 20000);
     png_header(&dir.join("wide.png"), 12000, 12000);
     png_header(&dir.join("tiles.png"), 70000, 10);
-    let o = run_in_3gb(&dir, "check shot.png");
+    let o = run_in_2gb(&dir, "check shot.png");
     refused(
         &o,
         2,
         "20000x20000 is too large for a screenshot of the lab (at most 4096",
     );
-    let o = run_in_3gb(&dir, "check wide.png");
+    let o = run_in_2gb(&dir, "check wide.png");
     refused(&o, 2, "12000x12000 is too large");
-    let o = run_in_3gb(&dir, "pixel-light --texture tiles.png -o x.png");
+    let o = run_in_2gb(&dir, "pixel-light --texture tiles.png -o x.png");
     refused(&o, 1, "70000x10 is too large for a texture (at most 16384");
 }
 

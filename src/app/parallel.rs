@@ -2,21 +2,36 @@
 //! per band, each thread owning its pixels (no locks, no atomics per pixel). A
 //! band draws exactly its part of the whole image, so the result is the same, byte
 //! for byte, for any number of threads.
+//!
+//! The threads beside the caller are [`Helpers`]: each waits for the second half
+//! of a [`Join`], spinning a little before it sleeps, so handing a frame over
+//! costs well under a microsecond when frames follow each other. (rayon's pool,
+//! entered from outside, sends the caller to sleep and wakes it again: about
+//! 24 us a frame here, a fifth of a 2000x2000 clear.) The caller draws the first
+//! half itself and takes the second back if no helper has started it, so a join
+//! is never slower than the two halves in turn by more than a few atomic
+//! operations.
 
 use crate::app::figure::{Figure, Inputs, Render};
 use crate::extensions::normal_map::TangentFrame;
 use crate::extensions::texture::Model;
 use crate::pipeline::bands::CHUNK;
 use crate::pipeline::clip::ScreenVertex;
-use crate::pipeline::draw::{InTurn, Join, Stats, Vertices};
+use crate::pipeline::draw::{Join, Stats, Vertices};
 use crate::pipeline::{Camera, Frame, Mesh, Target};
+use std::any::Any;
+use std::cell::UnsafeCell;
 use std::ops::Range;
-use std::time::Instant;
+use std::panic::{catch_unwind, resume_unwind, AssertUnwindSafe};
+use std::sync::atomic::{AtomicU8, Ordering};
+use std::sync::Arc;
+use std::thread::{JoinHandle, Thread};
+use std::time::{Duration, Instant};
 
 /// A figure drawn in `threads` bands.
 pub struct Parallel {
     pipelines: Vec<Box<dyn Render>>,
-    pool: Option<rayon::ThreadPool>,
+    helpers: Helpers,
     stats: Stats,
     /// The faces' tangent frames, for a figure with a normal map.
     frames: Vec<TangentFrame>,
@@ -42,7 +57,7 @@ struct Shared<'a> {
 
 /// Draws `target` with `pipelines`, the band of pipeline `i` ending before row
 /// `ends[i]` (the last at the target's bottom): the two halves of the pipelines on
-/// the two sides of a `rayon::join`, whose jobs live on the stack, so a frame
+/// the two sides of a [`Join`], whose jobs live on the stack, so a frame
 /// allocates nothing for its threads. Every pipeline draws, an empty band too,
 /// so that each one's counts are this frame's.
 fn draw_bands(
@@ -79,15 +94,6 @@ fn draw_bands(
     }
 }
 
-/// Work split between the pool's threads.
-struct Rayon;
-
-impl Join for Rayon {
-    fn join<A: FnOnce() + Send, B: FnOnce() + Send>(&self, a: A, b: B) {
-        rayon::join(a, b);
-    }
-}
-
 /// What setting up the triangles around one vertex costs, in pixels filled:
 /// a mesh of small triangles is split into bands by its vertices, a few large
 /// ones by their pixels.
@@ -110,22 +116,14 @@ impl Parallel {
     ) -> Result<Parallel, String> {
         let model = model.into();
         let threads = threads.max(1);
-        let pool = if threads > 1 {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .map_err(|e| format!("cannot start {threads} threads: {e}"))?;
-            Some(pool)
-        } else {
-            None
-        };
+        let helpers = Helpers::new(threads)?;
         let mut vertices = Vertices::default();
         if threads > 1 {
             vertices.group_faces(model.mesh);
         }
         Ok(Parallel {
             pipelines: (0..threads).map(|_| figure.pipeline_for(model)).collect(),
-            pool,
+            helpers,
             stats: Stats::default(),
             frames: figure.tangent_frames(model),
             vertices,
@@ -142,15 +140,9 @@ impl Parallel {
     /// vertices and its first faces: the tangent frames and the groups of faces
     /// the bands pass over ([`Vertices::group_faces`]) were made from it.
     pub fn render(&mut self, inputs: &Inputs, mesh: &Mesh, camera: &Camera, frame: &mut Frame) {
-        // The frame enters the pool once: each entry wakes its threads and
-        // puts the caller to sleep, which costs more than a small frame draws.
-        match self.pool.take() {
-            None => self.prepare_and_draw(inputs, mesh, camera, frame, &InTurn),
-            Some(pool) => {
-                pool.install(|| self.prepare_and_draw(inputs, mesh, camera, frame, &Rayon));
-                self.pool = Some(pool);
-            }
-        }
+        let helpers = std::mem::take(&mut self.helpers);
+        self.prepare_and_draw(inputs, mesh, camera, frame, &helpers);
+        self.helpers = helpers;
         // Each band decides about every triangle alike; pixels are its own.
         let mut stats = self.pipelines[0].stats();
         for p in &self.pipelines[1..] {
@@ -288,12 +280,238 @@ impl Parallel {
     }
 }
 
+// The helper threads, and how a join hands its second half to one.
+
+/// How long a helper keeps looking for work after its last job before it
+/// sleeps: longer than the gap between two frames drawn back to back.
+const HELPER_SPIN: Duration = Duration::from_micros(300);
+
+/// How long the caller looks for the helper's half to finish before it sleeps.
+const CALLER_SPIN: Duration = Duration::from_micros(50);
+
+/// A slot's states: its helper is starting, idle, a caller is writing the job
+/// into it, the job waits to be taken, the helper runs it, it has run (the
+/// caller reads how and makes the slot idle again), or the helper should end.
+const STARTING: u8 = 0;
+const IDLE: u8 = 1;
+const CLAIMED: u8 = 2;
+const GIVEN: u8 = 3;
+const RUNNING: u8 = 4;
+const DONE: u8 = 5;
+const STOP: u8 = 6;
+
+/// The second half of a join, on the caller's stack, its lifetime erased while
+/// it is handed over: the caller does not return before the slot is idle again.
+type Job = *mut (dyn FnMut() + Send + 'static);
+type Panic = Box<dyn Any + Send>;
+
+/// What a caller and one helper share.
+struct Slot {
+    state: AtomicU8,
+    /// Written by the caller while the slot is CLAIMED, read by the helper
+    /// once it has moved the slot from GIVEN to RUNNING.
+    job: UnsafeCell<Option<(Job, Thread)>>,
+    /// Written by the helper while RUNNING, taken by the caller once DONE.
+    panic: UnsafeCell<Option<Panic>>,
+}
+
+// SAFETY: the cells are only touched by whoever the state says owns the slot
+// (see their fields), and every hand-over is a release store or exchange read
+// with acquire.
+unsafe impl Sync for Slot {}
+unsafe impl Send for Slot {}
+
+struct Helper {
+    slot: Arc<Slot>,
+    thread: Thread,
+    handle: Option<JoinHandle<()>>,
+}
+
+/// `threads - 1` helper threads, so that a frame's bands are drawn by
+/// `threads` threads with the caller's. None by default: every join in turn.
+#[derive(Default)]
+pub struct Helpers {
+    helpers: Vec<Helper>,
+}
+
+impl Helpers {
+    /// Starts `threads - 1` helpers, and returns once they have started: a
+    /// thread sets itself up (and allocates) as it starts, which belongs to
+    /// this call, not to the first frames.
+    pub fn new(threads: usize) -> Result<Helpers, String> {
+        let mut helpers = Vec::with_capacity(threads.saturating_sub(1));
+        for i in 1..threads.max(1) {
+            let slot = Arc::new(Slot::new(STARTING));
+            let theirs = Arc::clone(&slot);
+            let handle = std::thread::Builder::new()
+                .name(format!("rasterlab band {i}"))
+                .spawn(move || help(&theirs))
+                .map_err(|e| format!("cannot start {threads} threads: {e}"))?;
+            helpers.push(Helper {
+                slot,
+                thread: handle.thread().clone(),
+                handle: Some(handle),
+            });
+        }
+        for h in &helpers {
+            while h.slot.state.load(Ordering::Acquire) == STARTING {
+                std::thread::yield_now();
+            }
+        }
+        Ok(Helpers { helpers })
+    }
+
+    /// The first idle helper, now the caller's.
+    fn claim(&self) -> Option<&Helper> {
+        self.helpers.iter().find(|h| {
+            h.slot
+                .state
+                .compare_exchange(IDLE, CLAIMED, Ordering::Acquire, Ordering::Relaxed)
+                .is_ok()
+        })
+    }
+}
+
+impl Slot {
+    fn new(state: u8) -> Slot {
+        Slot {
+            state: AtomicU8::new(state),
+            job: UnsafeCell::new(None),
+            panic: UnsafeCell::new(None),
+        }
+    }
+
+    /// After the caller's half: the job run here if no helper took it, or its
+    /// end awaited; the slot is idle again, and the job's panic returned.
+    fn finish(&self, job: Job) -> Option<Panic> {
+        let taken_back = self
+            .state
+            .compare_exchange(GIVEN, CLAIMED, Ordering::Acquire, Ordering::Relaxed)
+            .is_ok();
+        let panic = if taken_back {
+            // SAFETY: the job is this caller's, alive on its stack, and no
+            // helper will read the slot before it is given again.
+            let run = catch_unwind(AssertUnwindSafe(|| unsafe { (*job)() }));
+            unsafe { *self.job.get() = None };
+            run.err()
+        } else {
+            wait_until(|| self.state.load(Ordering::Acquire) == DONE, CALLER_SPIN);
+            // SAFETY: DONE, read with acquire: the helper has let go of the cells.
+            unsafe { (*self.panic.get()).take() }
+        };
+        self.state.store(IDLE, Ordering::Release);
+        panic
+    }
+}
+
+impl Join for Helpers {
+    fn join<A: FnOnce() + Send, B: FnOnce() + Send>(&self, a: A, b: B) {
+        let Some(helper) = self.claim() else {
+            a();
+            b();
+            return;
+        };
+        let mut b = Some(b);
+        let mut second = || {
+            if let Some(b) = b.take() {
+                b()
+            }
+        };
+        let second: *mut (dyn FnMut() + Send + '_) = &mut second;
+        // SAFETY: only the lifetime changes; `finish` below returns only once
+        // the job has run and the slot is idle, and `a`'s panic is caught so
+        // that it cannot unwind past the job while a helper runs it.
+        let job: Job = unsafe { std::mem::transmute(second) };
+        let slot = &*helper.slot;
+        // SAFETY: CLAIMED is this caller's alone.
+        unsafe { *slot.job.get() = Some((job, std::thread::current())) };
+        slot.state.store(GIVEN, Ordering::Release);
+        helper.thread.unpark();
+        let first = catch_unwind(AssertUnwindSafe(a));
+        let second = slot.finish(job);
+        if let Err(panic) = first {
+            resume_unwind(panic);
+        }
+        if let Some(panic) = second {
+            resume_unwind(panic);
+        }
+    }
+}
+
+impl Drop for Helpers {
+    fn drop(&mut self) {
+        // No join is running: each borrows the helpers.
+        for h in &mut self.helpers {
+            h.slot.state.store(STOP, Ordering::Release);
+            h.thread.unpark();
+            if let Some(handle) = h.handle.take() {
+                let _ = handle.join();
+            }
+        }
+    }
+}
+
+/// A helper's life: wait for a job, run it, say so, until told to stop.
+fn help(slot: &Slot) {
+    slot.state.store(IDLE, Ordering::Release);
+    loop {
+        let mut stop = false;
+        wait_until(
+            || match slot.state.load(Ordering::Acquire) {
+                GIVEN => slot
+                    .state
+                    .compare_exchange(GIVEN, RUNNING, Ordering::Acquire, Ordering::Relaxed)
+                    .is_ok(),
+                STOP => {
+                    stop = true;
+                    true
+                }
+                _ => false,
+            },
+            HELPER_SPIN,
+        );
+        if stop {
+            return;
+        }
+        // SAFETY: RUNNING is this helper's; the caller wrote the job before
+        // giving it and waits for DONE before its stack frame ends.
+        let (job, caller) = unsafe { (*slot.job.get()).take() }.expect("a given slot holds a job");
+        let run = catch_unwind(AssertUnwindSafe(|| unsafe { (*job)() }));
+        if let Err(panic) = run {
+            unsafe { *slot.panic.get() = Some(panic) };
+        }
+        slot.state.store(DONE, Ordering::Release);
+        // The caller may be asleep; it may also be gone already, which
+        // `caller`, an owned handle, survives.
+        caller.unpark();
+    }
+}
+
+/// Waits until `ready`: spinning for about `spin`, yielding the core to other
+/// threads after the first few microseconds, then asleep until unparked.
+fn wait_until(mut ready: impl FnMut() -> bool, spin: Duration) {
+    let start = Instant::now();
+    let mut tries = 0u32;
+    while !ready() {
+        tries = tries.wrapping_add(1);
+        if tries < 1024 {
+            std::hint::spin_loop();
+        } else if start.elapsed() < spin {
+            std::thread::yield_now();
+        } else {
+            std::thread::park();
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::app::figure::Inputs;
     use crate::pipeline::{Light, StageName};
     use crate::scene::cornell_box;
+    use std::sync::atomic::AtomicUsize;
+    use std::sync::Mutex;
 
     #[test]
     fn a_band_slower_than_its_share_is_given_fewer_rows() {
@@ -323,5 +541,117 @@ mod tests {
         let wide = Camera::handout(200, 240);
         parallel.balance(&wide);
         assert_eq!(parallel.ends, [120, 240]);
+    }
+
+    /// Helpers whose one slot no thread serves: every join takes its second
+    /// half back and runs it on the caller.
+    fn unserved() -> Helpers {
+        Helpers {
+            helpers: vec![Helper {
+                slot: Arc::new(Slot::new(IDLE)),
+                thread: std::thread::current(),
+                handle: None,
+            }],
+        }
+    }
+
+    /// A sum over 0..n split in halves down to single numbers, each half a join.
+    fn split_sum(helpers: &Helpers, range: std::ops::Range<usize>, sum: &AtomicUsize) {
+        if range.len() <= 1 {
+            for i in range {
+                sum.fetch_add(i, Ordering::Relaxed);
+            }
+            return;
+        }
+        let middle = range.start + range.len() / 2;
+        helpers.join(
+            || split_sum(helpers, range.start..middle, sum),
+            || split_sum(helpers, middle..range.end, sum),
+        );
+    }
+
+    #[test]
+    fn every_half_runs_once_nested_or_not_on_any_number_of_helpers() {
+        for helpers in [
+            Helpers::new(1).unwrap(),
+            Helpers::new(2).unwrap(),
+            Helpers::new(7).unwrap(),
+            unserved(),
+        ] {
+            for round in 0..200 {
+                let n = 1 + round % 37;
+                let sum = AtomicUsize::new(0);
+                split_sum(&helpers, 0..n, &sum);
+                assert_eq!(sum.into_inner(), n * (n - 1) / 2, "{n}");
+                for h in &helpers.helpers {
+                    assert_eq!(h.slot.state.load(Ordering::Relaxed), IDLE);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_helper_draws_the_second_half_when_the_first_takes_a_while() {
+        let helpers = Helpers::new(2).unwrap();
+        let threads = Mutex::new(Vec::new());
+        helpers.join(
+            || {
+                // Up to 5 s for the helper to start the second half, however
+                // busy the machine.
+                let start = Instant::now();
+                while threads.lock().unwrap().is_empty() && start.elapsed().as_secs() < 5 {
+                    std::thread::sleep(Duration::from_millis(1));
+                }
+                threads.lock().unwrap().push(std::thread::current().id());
+            },
+            || threads.lock().unwrap().push(std::thread::current().id()),
+        );
+        let threads = threads.into_inner().unwrap();
+        assert_eq!(threads.len(), 2);
+        assert_ne!(threads[0], threads[1]);
+        // Taken back, the second half runs on the caller.
+        let caller = Mutex::new(None);
+        unserved().join(
+            || {},
+            || *caller.lock().unwrap() = Some(std::thread::current().id()),
+        );
+        assert_eq!(
+            caller.into_inner().unwrap(),
+            Some(std::thread::current().id())
+        );
+    }
+
+    #[test]
+    fn a_panic_in_either_half_reaches_the_caller_after_both_ended() {
+        for helpers in [Helpers::new(2).unwrap(), unserved()] {
+            let ended = AtomicUsize::new(0);
+            let caught = catch_unwind(AssertUnwindSafe(|| {
+                helpers.join(
+                    || {
+                        ended.fetch_add(1, Ordering::SeqCst);
+                    },
+                    || panic!("second"),
+                )
+            }));
+            let said = caught.unwrap_err();
+            assert_eq!(said.downcast_ref::<&str>(), Some(&"second"));
+            assert_eq!(ended.load(Ordering::SeqCst), 1);
+            let caught = catch_unwind(AssertUnwindSafe(|| {
+                helpers.join(
+                    || panic!("first"),
+                    || {
+                        std::thread::sleep(Duration::from_millis(20));
+                        ended.fetch_add(1, Ordering::SeqCst);
+                    },
+                )
+            }));
+            let said = caught.unwrap_err();
+            assert_eq!(said.downcast_ref::<&str>(), Some(&"first"));
+            assert_eq!(ended.load(Ordering::SeqCst), 2);
+            // And the helpers still work.
+            let sum = AtomicUsize::new(0);
+            split_sum(&helpers, 0..10, &sum);
+            assert_eq!(sum.into_inner(), 45);
+        }
     }
 }

@@ -1017,8 +1017,9 @@ fn rows_of_groups(
     groups.group_rows(first, rows, out);
 }
 
-/// Two pieces of work that may run at once: `rayon::join` for the threads that
-/// draw bands, one after the other ([`InTurn`]) otherwise. The pipeline starts
+/// Two pieces of work that may run at once: on two threads for the threads that
+/// draw bands (the application's helpers), one after the other ([`InTurn`])
+/// otherwise. The pipeline starts
 /// no threads of its own.
 pub trait Join: Sync {
     fn join<A: FnOnce() + Send, B: FnOnce() + Send>(&self, a: A, b: B);
