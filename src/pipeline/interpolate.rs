@@ -7,7 +7,8 @@
 //! section; here the stage names the struct and the same code interpolates it.
 
 use glam::Vec2;
-use std::ops::{Add, Div, Mul, Sub};
+use std::iter::Take;
+use std::ops::{Add, Div, Mul, Range, Sub};
 
 /// A per-pixel struct that can be interpolated: anything with `+`, `-`, `* f32`
 /// and `/ f32`, which is all `Interpolate` and clipping use. Implemented for every
@@ -164,6 +165,56 @@ impl<V: Varying> RunningSum<V> {
     }
 }
 
+/// `value + step + step + ...`, `n` additions in f32, bit for bit what adding one
+/// step at a time gives, in a few additions for each power of two the sum passes
+/// through. Between two powers of two every f32 is a multiple of the same unit,
+/// so each addition adds `step` rounded to that unit: the same amount every time
+/// (a tie rounds to an even multiple, and an even sum stays even), which two
+/// additions in a row confirm before the sum jumps to where that power ends.
+pub fn add_n_times(mut value: f32, step: f32, mut n: usize) -> f32 {
+    while n > 0 {
+        if !value.is_finite() {
+            return value + step; // infinite or NaN after one more addition, for good
+        }
+        let next = value + step;
+        // Sterbenz: with |step| <= |value| / 2 both differences are exact.
+        if value.is_normal() && step.abs() <= value.abs() / 2.0 && n > 1 {
+            let added = next - value;
+            if added == 0.0 {
+                return value; // the step is lost in the rounding, every time
+            }
+            if next + step - next == added {
+                let jumps = jumps_within_binade(value, added).min(n);
+                if jumps > 0 {
+                    // A multiple of the unit inside the power of two: exact.
+                    value = (value as f64 + jumps as f64 * added as f64) as f32;
+                    n -= jumps;
+                    continue;
+                }
+            }
+        }
+        value = next;
+        n -= 1;
+    }
+    value
+}
+
+/// How many times `added` can be added to `value` with every sum at least a unit
+/// inside the power of two `value` lies in (`value` normal, `added` a multiple
+/// of its unit); the sums need no rounding there.
+fn jumps_within_binade(value: f32, added: f32) -> usize {
+    let magnitude = value.abs() as f64;
+    let exponent = ((value.to_bits() >> 23) & 0xff) as i32 - 127;
+    let (low, unit) = (2f64.powi(exponent), 2f64.powi(exponent - 23));
+    let room = if (added > 0.0) == (value > 0.0) {
+        (2.0 * low - unit) - magnitude
+    } else {
+        magnitude - (low + unit)
+    };
+    // Exact operands, and a quotient never within rounding of the next integer.
+    (room / added.abs() as f64).floor().max(0.0) as usize
+}
+
 /// The values from `a` to `b` in `n` steps, computed exactly as the handout's
 /// `Interpolate`: `step = (b - a) / max(n - 1, 1)` in f32, the [`RunningSum`], and
 /// each position truncated toward zero, as C++'s float-to-int conversion does. It
@@ -263,10 +314,120 @@ impl<V: Varying> Steps<V> {
         if self.n > RUNNING_SUM_LIMIT {
             self.i = self.i.max(i);
         }
+        if size_of::<V>() == 0 && self.i < i {
+            // Only x, y and 1/z are summed: each one's additions, all at once.
+            let (c, step, n) = (&mut self.sum.current, &self.sum.step, i - self.i);
+            c.xy.x = add_n_times(c.xy.x, step.xy.x, n);
+            c.xy.y = add_n_times(c.xy.y, step.xy.y, n);
+            c.zinv = add_n_times(c.zinv, step.zinv, n);
+            self.i = i;
+        }
         while self.i < i {
             self.sum.advance();
             self.i += 1;
         }
+    }
+}
+
+impl<V: Varying> Steps<V> {
+    /// The values whose row (y truncated) is in `rows`. y moves one way along a
+    /// walk, so they follow each other: those before are passed over
+    /// ([`Steps::skip_to`]) and the walk ends where y leaves the rows.
+    pub fn within_rows(mut self, rows: Range<i32>) -> Take<Steps<V>> {
+        let (here, n) = (self.i, self.n);
+        let rising = match n > RUNNING_SUM_LIMIT {
+            true => self.span.xy.y,
+            false => self.sum.step.xy.y,
+        };
+        let (from, to) = if rising >= 0.0 {
+            let first = self.first_index(rows.start, |y| y >= rows.start);
+            (first, self.first_index(rows.end, |y| y >= rows.end))
+        } else {
+            let first = self.first_index(rows.end.saturating_sub(1), |y| y < rows.end);
+            (
+                first,
+                self.first_index(rows.start.saturating_sub(1), |y| y < rows.start),
+            )
+        };
+        let to = to.max(from);
+        self.skip_to(from);
+        debug_assert!(here <= from && to <= n);
+        self.take(to - from)
+    }
+
+    /// The row of the `i`-th value (`i` not before the next one).
+    fn row_at(&self, i: usize) -> i32 {
+        if self.n > RUNNING_SUM_LIMIT {
+            let t = i as f32 / self.last;
+            return (self.start.xy.y + self.span.xy.y * t) as i32;
+        }
+        let c = &self.sum;
+        add_n_times(c.current.xy.y, c.step.xy.y, i - self.i) as i32
+    }
+
+    /// The first index from the next value's on whose row `reached` holds, or
+    /// the end: `reached` holds from some value on. Looked for from where a
+    /// straight line would reach row `target`, doubling the stride outward,
+    /// then halving it.
+    fn first_index(&self, target: i32, reached: impl Fn(i32) -> bool) -> usize {
+        let (lo, hi) = (self.i, self.n);
+        if lo >= hi {
+            return hi;
+        }
+        let reached = |i: usize| reached(self.row_at(i));
+        // The direct form counts from the first value, the running sum from here.
+        let (base, y, per_step) = match self.n > RUNNING_SUM_LIMIT {
+            true => (0, self.start.xy.y, self.span.xy.y / self.last),
+            false => (lo, self.sum.current.xy.y, self.sum.step.xy.y),
+        };
+        let steps = ((target as f64 - y as f64) / per_step as f64).ceil();
+        let guess = match steps.is_finite() {
+            true => base.saturating_add_signed(steps.clamp(-1e9, 1e9) as isize),
+            false => lo,
+        };
+        let guess = guess.clamp(lo, hi - 1);
+        // The answer lies in low..=high.
+        let (mut low, mut high);
+        let mut stride = 1;
+        if reached(guess) {
+            high = guess;
+            loop {
+                if high - lo < stride {
+                    low = lo;
+                    break;
+                }
+                if !reached(high - stride) {
+                    low = high - stride + 1;
+                    break;
+                }
+                high -= stride;
+                stride *= 2;
+            }
+        } else {
+            low = guess + 1;
+            loop {
+                let probe = low + stride - 1;
+                if probe >= hi {
+                    high = hi;
+                    break;
+                }
+                if reached(probe) {
+                    high = probe;
+                    break;
+                }
+                low = probe + 1;
+                stride *= 2;
+            }
+        }
+        while low < high {
+            let mid = low + (high - low) / 2;
+            if reached(mid) {
+                high = mid;
+            } else {
+                low = mid + 1;
+            }
+        }
+        low
     }
 }
 
@@ -426,5 +587,107 @@ mod tests {
                 b: Vec3::splat(4.0)
             }
         );
+    }
+
+    /// What [`add_n_times`] must equal: one addition at a time.
+    fn one_at_a_time(mut value: f32, step: f32, n: usize) -> f32 {
+        for _ in 0..n {
+            value += step;
+        }
+        value
+    }
+
+    fn same(a: f32, b: f32) -> bool {
+        a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan())
+    }
+
+    #[test]
+    fn adding_n_times_crosses_powers_of_two_and_zero_as_adding_does() {
+        // A third of a pixel from row 0 to 1500 crosses eleven powers of two;
+        // 0.5 on odd starts is a tie at every power above 2^23; a step of
+        // -0.7 from 3 crosses zero; 1e-9 on 1 is lost in the rounding.
+        let cases = [
+            (0.0, 1.0 / 3.0, 4500),
+            (-1500.0, 1.0 / 3.0, 4096),
+            (8_388_609.0, 0.5, 4000),
+            (16_777_215.0, 1.5, 4000),
+            (3.0, -0.7, 40),
+            (1.0, 1e-9, 4096),
+            (0.0, f32::from_bits(1), 4096),
+            (f32::MAX, f32::MAX / 4.0, 3),
+            (1.0, f32::NAN, 2),
+        ];
+        for (value, step, n) in cases {
+            for k in [0, 1, 2, 3, n / 3, n - 1, n] {
+                let (got, want) = (add_n_times(value, step, k), one_at_a_time(value, step, k));
+                assert!(same(got, want), "{value} + {step} x {k}: {got} != {want}");
+            }
+        }
+    }
+
+    fn value() -> impl Strategy<Value = f32> {
+        prop_oneof![
+            3 => (-8192i32..8192).prop_map(|v| v as f32),
+            2 => -1e4f32..1e4,
+            1 => -1e-3f32..1e-3,
+            1 => 0.0f32..1.0,
+            1 => any::<f32>(),
+        ]
+    }
+
+    fn step() -> impl Strategy<Value = f32> {
+        prop_oneof![
+            // The handout's steps: a whole change over a whole number of steps.
+            4 => (-8192i32..8192, 1i32..4096).prop_map(|(d, n)| d as f32 / n as f32),
+            // Ties: a few bits at a power of two.
+            2 => (-64i32..64, 0i32..30).prop_map(|(k, e)| k as f32 * 2f32.powi(-e)),
+            2 => -10f32..10.0,
+            1 => -1e-6f32..1e-6,
+            1 => any::<f32>(),
+        ]
+    }
+
+    fn line_end() -> impl Strategy<Value = Pixel<Nothing>> {
+        (-6000i32..6000, -6000i32..6000, 0.0f32..1.0).prop_map(|(x, y, zinv)| Pixel {
+            zinv,
+            ..Pixel::at(x, y)
+        })
+    }
+
+    use proptest::prelude::*;
+
+    proptest! {
+        #[test]
+        fn adding_n_times_is_adding_one_at_a_time(
+            value in value(), step in step(), n in 0usize..5000
+        ) {
+            let (got, want) = (add_n_times(value, step, n), one_at_a_time(value, step, n));
+            prop_assert!(same(got, want), "{} + {} x {}: {} != {}", value, step, n, got, want);
+        }
+
+        #[test]
+        fn a_walk_within_rows_gives_the_walks_values_in_those_rows(
+            a in line_end(),
+            b in line_end(),
+            start in -6100i32..6100,
+            rows in 0i32..3000,
+            short in prop::bool::ANY,
+        ) {
+            // Short lines (the running sum) and long ones (the direct form).
+            let b = match short {
+                true => Pixel { x: a.x + b.x / 8, y: a.y + b.y / 8, ..b },
+                false => b,
+            };
+            let rows = start..start + rows;
+            let n = line_pixels(&a, &b);
+            let all = Steps::new(a, b, n).filter(|p| rows.contains(&p.y));
+            let within = Steps::new(a, b, n).within_rows(rows.clone());
+            prop_assert_eq!(within.collect::<Vec<_>>(), all.collect::<Vec<_>>());
+            // A varying with fields is walked, not skipped: the same values.
+            let with = |p: Pixel<Nothing>| Pixel { varying: p.zinv * 3.0, x: p.x, y: p.y, zinv: p.zinv };
+            let all = Steps::new(with(a), with(b), n).filter(|p| rows.contains(&p.y));
+            let within = Steps::new(with(a), with(b), n).within_rows(rows.clone());
+            prop_assert_eq!(within.collect::<Vec<_>>(), all.collect::<Vec<_>>());
+        }
     }
 }

@@ -161,7 +161,9 @@ pub fn draw_line<V: Varying>(
     draw_line_by(Lines::Interpolate, a, b, bounds, plot)
 }
 
-/// [`draw_line`], with the line walked the way `lines` says.
+/// [`draw_line`], with the line walked the way `lines` says. The handout's walk
+/// starts at the bounds' first row and ends at their last (a band of a frame on
+/// threads draws only its own rows), with the pixels it gives unchanged.
 pub fn draw_line_by<V: Varying>(
     lines: Lines,
     a: Pixel<V>,
@@ -169,11 +171,17 @@ pub fn draw_line_by<V: Varying>(
     bounds: &Bounds,
     mut plot: impl FnMut(Pixel<V>),
 ) {
-    walk_line(lines, a, b, |p| {
+    let in_bounds = |p: Pixel<V>| {
         if bounds.contains(&p) {
             plot(p);
         }
-    })
+    };
+    match lines {
+        Lines::Interpolate => Steps::new(a, b, line_pixels(&a, &b))
+            .within_rows(bounds.y.clone())
+            .for_each(in_bounds),
+        Lines::Bresenham => walk_line(lines, a, b, in_bounds),
+    }
 }
 
 /// The handout's `leftPixels` and `rightPixels`: the first and last pixel of every
