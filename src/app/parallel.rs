@@ -37,11 +37,12 @@ pub struct Parallel {
     frames: Vec<TangentFrame>,
     /// The mesh's vertices in camera space, prepared once per frame for every band.
     vertices: Vertices,
-    /// Each row's work this frame, and where the bands end (kept between frames).
+    /// Each block of rows' work this frame, and where the bands end (kept
+    /// between frames).
     work: Vec<f64>,
     ends: Vec<u32>,
-    /// How much each row's work costs compared with the others, as the bands'
-    /// drawing times have shown, and each band's time in the last frame.
+    /// How much each block's work costs compared with the others, as the
+    /// bands' drawing times have shown, and each band's time in the last frame.
     weight: Vec<f64>,
     times: Vec<f64>,
 }
@@ -98,6 +99,9 @@ fn draw_bands(
 /// a mesh of small triangles is split into bands by its vertices, a few large
 /// ones by their pixels.
 const VERTEX_COST: usize = 64;
+
+/// At most how many blocks of rows [`Parallel::balance`] weighs.
+const BLOCKS: usize = 256;
 
 /// About how many vertices [`Parallel::balance`] looks at.
 const VERTEX_SAMPLE: usize = 1 << 16;
@@ -186,6 +190,8 @@ impl Parallel {
     /// row's work weighed by what the bands' times have shown it costs. Any
     /// split draws the same bytes; this one keeps both threads busy when the
     /// triangles crowd one part of the image, or one part's pixels cost more.
+    /// Rows are weighed in at most [`BLOCKS`] blocks, since this runs on one
+    /// thread before the bands start.
     fn balance(&mut self, camera: &Camera) {
         let (n, height) = (self.pipelines.len(), camera.height as usize);
         if n == 1 {
@@ -193,10 +199,16 @@ impl Parallel {
             self.ends.push(camera.height);
             return;
         }
+        let rows = height.div_ceil(BLOCKS).max(1);
+        let blocks = height.div_ceil(rows);
         self.work.clear();
-        self.work.resize(height, camera.width as f64);
+        self.work
+            .resize(blocks, (camera.width as usize * rows) as f64);
+        if let Some(last) = self.work.last_mut() {
+            *last = (camera.width as usize * (height - (blocks - 1) * rows)) as f64;
+        }
         let centre = camera.height as f32 / 2.0;
-        let row = |y: f32| ((y + centre).max(0.0) as usize).min(height.saturating_sub(1));
+        let block = |y: f32| ((y + centre).max(0.0) as usize).min(height.saturating_sub(1)) / rows;
         let chunks = self.vertices.chunk_rows();
         if chunks.is_empty() {
             // A sample of the vertices is enough to see where they crowd.
@@ -204,66 +216,68 @@ impl Parallel {
             let every = (screen.len() / VERTEX_SAMPLE).max(1);
             let cost = (VERTEX_COST * every) as f64;
             for &ScreenVertex { y, .. } in screen.iter().step_by(every) {
-                self.work[row(y)] += cost;
+                self.work[block(y)] += cost;
             }
         } else {
             // The rows of each chunk of vertices, found as they were projected.
             let cost = (VERTEX_COST * CHUNK) as f64;
             for &(low, high) in chunks {
-                self.work[row((low + high) / 2.0)] += cost;
+                self.work[block((low + high) / 2.0)] += cost;
             }
         }
-        self.learn_weights(height);
+        self.learn_weights(height, rows);
         for (w, k) in self.work.iter_mut().zip(&self.weight) {
             *w *= k;
         }
         let total: f64 = self.work.iter().sum();
-        let (mut done, mut row) = (0.0, 0usize);
+        let (mut done, mut b) = (0.0, 0usize);
         self.ends.clear();
         for band in 1..n {
             let share = total * band as f64 / n as f64;
-            while row < height && done + self.work[row] / 2.0 < share {
-                done += self.work[row];
-                row += 1;
+            while b < blocks && done + self.work[b] / 2.0 < share {
+                done += self.work[b];
+                b += 1;
             }
-            self.ends.push(row as u32);
+            self.ends.push((b * rows).min(height) as u32);
         }
         self.ends.push(camera.height);
     }
 
-    /// Weighs the rows of each band of the last frame by how long the band took
-    /// against how long its work, as weighed, foretold: a band slower than its
-    /// share makes its rows dearer. Halfway (a square root) each frame, so that
-    /// one frame's noise moves the bands little.
-    fn learn_weights(&mut self, height: usize) {
-        if self.weight.len() != height || self.ends.last() != Some(&(height as u32)) {
+    /// Weighs the blocks of `rows` rows of each band of the last frame by how
+    /// long the band took against how long its work, as weighed, foretold: a
+    /// band slower than its share makes its rows dearer. Halfway (a square root)
+    /// each frame, so that one frame's noise moves the bands little.
+    fn learn_weights(&mut self, height: usize, rows: usize) {
+        let blocks = self.work.len();
+        if self.weight.len() != blocks || self.ends.last() != Some(&(height as u32)) {
             // A new size: nothing learnt yet.
             self.weight.clear();
-            self.weight.resize(height, 1.0);
+            self.weight.resize(blocks, 1.0);
             return;
         }
-        // Each band's rows, its work as weighed so far, and its time.
+        // Each band's blocks (bands end on a block's edge, or at the bottom),
+        // its work as weighed so far, and its time.
         let (work, weight) = (&self.work, &mut self.weight);
         let starts = std::iter::once(0).chain(self.ends.iter().map(|&e| e as usize));
         let bands = starts
             .zip(&self.ends)
-            .map(|(start, &end)| start..end as usize);
+            .map(|(start, &end)| start / rows..(end as usize).div_ceil(rows));
         let weighed =
-            |weight: &[f64], rows: Range<usize>| -> f64 { rows.map(|r| work[r] * weight[r]).sum() };
-        let all_work: f64 = weighed(weight, 0..height);
+            |weight: &[f64], b: Range<usize>| -> f64 { b.map(|b| work[b] * weight[b]).sum() };
+        let all_work: f64 = weighed(weight, 0..blocks);
         let all_time: f64 = self.times.iter().sum();
         if all_time <= 0.0 || all_work <= 0.0 {
             return;
         }
-        for (rows, &time) in bands.zip(&self.times) {
-            let band = weighed(weight, rows.clone());
+        for (b, &time) in bands.zip(&self.times) {
+            let band = weighed(weight, b.clone());
             if band <= 0.0 || time <= 0.0 {
                 continue;
             }
             let dearer = ((time / all_time) / (band / all_work))
                 .sqrt()
                 .clamp(0.5, 2.0);
-            for w in &mut weight[rows] {
+            for w in &mut weight[b] {
                 *w = (*w * dearer).clamp(1.0 / 64.0, 64.0);
             }
         }
@@ -541,6 +555,11 @@ mod tests {
         let wide = Camera::handout(200, 240);
         parallel.balance(&wide);
         assert_eq!(parallel.ends, [120, 240]);
+        // A tall frame is weighed in blocks of rows, each band a whole number of them.
+        let tall = Camera::handout(200, 2001);
+        parallel.balance(&tall);
+        assert_eq!(parallel.work.len(), 251);
+        assert_eq!(parallel.ends, [1000, 2001]);
     }
 
     /// Helpers whose one slot no thread serves: every join takes its second
