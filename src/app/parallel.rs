@@ -199,16 +199,17 @@ impl Parallel {
             self.ends.push(camera.height);
             return;
         }
-        let rows = height.div_ceil(BLOCKS).max(1);
-        let blocks = height.div_ceil(rows);
+        let block_rows = height.div_ceil(BLOCKS).max(1);
+        let blocks = height.div_ceil(block_rows);
         self.work.clear();
         self.work
-            .resize(blocks, (camera.width as usize * rows) as f64);
+            .resize(blocks, (camera.width as usize * block_rows) as f64);
         if let Some(last) = self.work.last_mut() {
-            *last = (camera.width as usize * (height - (blocks - 1) * rows)) as f64;
+            *last = (camera.width as usize * (height - (blocks - 1) * block_rows)) as f64;
         }
         let centre = camera.height as f32 / 2.0;
-        let block = |y: f32| ((y + centre).max(0.0) as usize).min(height.saturating_sub(1)) / rows;
+        let block =
+            |y: f32| ((y + centre).max(0.0) as usize).min(height.saturating_sub(1)) / block_rows;
         let chunks = self.vertices.chunk_rows();
         if chunks.is_empty() {
             // A sample of the vertices is enough to see where they crowd.
@@ -225,7 +226,7 @@ impl Parallel {
                 self.work[block((low + high) / 2.0)] += cost;
             }
         }
-        self.learn_weights(height, rows);
+        self.learn_weights(height, block_rows);
         for (w, k) in self.work.iter_mut().zip(&self.weight) {
             *w *= k;
         }
@@ -238,16 +239,16 @@ impl Parallel {
                 done += self.work[b];
                 b += 1;
             }
-            self.ends.push((b * rows).min(height) as u32);
+            self.ends.push((b * block_rows).min(height) as u32);
         }
         self.ends.push(camera.height);
     }
 
-    /// Weighs the blocks of `rows` rows of each band of the last frame by how
-    /// long the band took against how long its work, as weighed, foretold: a
-    /// band slower than its share makes its rows dearer. Halfway (a square root)
-    /// each frame, so that one frame's noise moves the bands little.
-    fn learn_weights(&mut self, height: usize, rows: usize) {
+    /// Weighs the blocks (of `block_rows` rows) of each band of the last frame
+    /// by how long the band took against how long its work, as weighed,
+    /// foretold: a band slower than its share makes its rows dearer. Halfway (a
+    /// square root) each frame, so that one frame's noise moves the bands little.
+    fn learn_weights(&mut self, height: usize, block_rows: usize) {
         let blocks = self.work.len();
         if self.weight.len() != blocks || self.ends.last() != Some(&(height as u32)) {
             // A new size: nothing learnt yet.
@@ -261,7 +262,7 @@ impl Parallel {
         let starts = std::iter::once(0).chain(self.ends.iter().map(|&e| e as usize));
         let bands = starts
             .zip(&self.ends)
-            .map(|(start, &end)| start / rows..(end as usize).div_ceil(rows));
+            .map(|(start, &end)| start / block_rows..(end as usize).div_ceil(block_rows));
         let weighed =
             |weight: &[f64], b: Range<usize>| -> f64 { b.map(|b| work[b] * weight[b]).sum() };
         let all_work: f64 = weighed(weight, 0..blocks);
