@@ -200,13 +200,13 @@ impl Parallel {
             return;
         }
         let block_rows = height.div_ceil(BLOCKS).max(1);
-        let blocks = height.div_ceil(block_rows);
+        // Each block's pixels (the last block may hold fewer rows).
         self.work.clear();
-        self.work
-            .resize(blocks, (camera.width as usize * block_rows) as f64);
-        if let Some(last) = self.work.last_mut() {
-            *last = (camera.width as usize * (height - (blocks - 1) * block_rows)) as f64;
-        }
+        self.work.extend(
+            (0..height)
+                .step_by(block_rows)
+                .map(|top| (camera.width as usize * block_rows.min(height - top)) as f64),
+        );
         let centre = camera.height as f32 / 2.0;
         let block =
             |y: f32| ((y + centre).max(0.0) as usize).min(height.saturating_sub(1)) / block_rows;
@@ -235,7 +235,7 @@ impl Parallel {
         self.ends.clear();
         for band in 1..n {
             let share = total * band as f64 / n as f64;
-            while b < blocks && done + self.work[b] / 2.0 < share {
+            while b < self.work.len() && done + self.work[b] / 2.0 < share {
                 done += self.work[b];
                 b += 1;
             }
