@@ -100,10 +100,18 @@ impl Projection {
     /// them. `None` where 1/z is not finite (a point on the camera plane).
     #[inline]
     pub fn project_centred(&self, camera_space: Vec3) -> Option<(f32, f32, f32)> {
+        let (x, y, zinv) = self.project_centred_or_not_finite(camera_space);
+        (zinv.is_finite() && x.is_finite() && y.is_finite()).then_some((x, y, zinv))
+    }
+
+    /// [`Projection::project_centred`], the three numbers finite or not: for a
+    /// loop over many points that tests them without a branch.
+    #[inline]
+    pub fn project_centred_or_not_finite(&self, camera_space: Vec3) -> (f32, f32, f32) {
         let zinv = 1.0 / camera_space.z;
         let x = self.focal * camera_space.x * zinv;
         let y = self.focal * camera_space.y * zinv;
-        (zinv.is_finite() && x.is_finite() && y.is_finite()).then_some((x, y, zinv))
+        (x, y, zinv)
     }
 }
 

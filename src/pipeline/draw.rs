@@ -967,29 +967,32 @@ fn project_all(
         };
     }
     let (projection, near, rect) = view;
-    let mut fit = Fit {
-        in_front: true,
-        inside: true,
-    };
+    let near = near.unwrap_or(f32::MIN_POSITIVE);
+    let (mut in_front, mut inside) = (true, true);
+    // Without a branch per point (`&`, not `&&`), so that the compiler may take
+    // several points at once. A point off the screen is written too: the caller
+    // reads the screen only if every point is on it.
     for ((&p, c), s) in positions.iter().zip(camera_space).zip(screen.iter_mut()) {
-        *c = projection.to_camera(p);
-        if !fit.in_front && !fit.inside {
-            continue; // neither can hold: no need to project the rest
-        }
-        let in_front = c.z >= near.unwrap_or(f32::MIN_POSITIVE) && c.z.is_finite();
-        fit.in_front &= in_front;
-        let on_screen = in_front
-            && projection.project_centred(*c).is_some_and(|(x, y, zinv)| {
-                *s = ScreenVertex {
-                    x,
-                    y,
-                    zinv,
-                    varying: Nothing {},
-                };
-                (rect.left..=rect.right).contains(&x) && (rect.top..=rect.bottom).contains(&y)
-            });
-        fit.inside &= on_screen;
+        let v = projection.to_camera(p);
+        *c = v;
+        let (x, y, zinv) = projection.project_centred_or_not_finite(v);
+        *s = ScreenVertex {
+            x,
+            y,
+            zinv,
+            varying: Nothing {},
+        };
+        let front = (v.z >= near) & v.z.is_finite();
+        in_front &= front;
+        // The rectangle's bounds hold no infinity or NaN, so neither do x and y.
+        inside &= front
+            & zinv.is_finite()
+            & (x >= rect.left)
+            & (x <= rect.right)
+            & (y >= rect.top)
+            & (y <= rect.bottom);
     }
+    let fit = Fit { in_front, inside };
     if fit.inside && !rows.is_empty() {
         chunk_rows(screen, rows);
     }
@@ -1178,6 +1181,67 @@ mod tests {
         let behind = seen(&mesh, false);
         assert!(behind.1.is_empty() && !behind.2 && !behind.3);
         assert_eq!(seen(&mesh, true), behind);
+    }
+
+    #[test]
+    fn the_fit_of_the_vertices_is_what_projecting_each_one_says() {
+        // One point beside an inner triangle: on the screen's edges exactly and
+        // just beyond them, on and around the near plane, on the camera plane,
+        // behind, and not finite. The loop that projects them all tests without
+        // a branch; each point is asked here as a corner would be.
+        let (_, camera) = wall();
+        let beyond = 0.5 + f32::EPSILON;
+        let points = [
+            (0.5, 0.5, 1.0),
+            (-0.5, -0.5, 1.0),
+            (beyond, 0.0, 1.0),
+            (0.0, -beyond, 1.0),
+            (0.0, 0.0, 0.5),
+            (0.0, 0.0, 0.5 - f32::EPSILON),
+            (0.0, 0.0, f32::MIN_POSITIVE),
+            (0.0, 0.0, f32::MIN_POSITIVE / 2.0),
+            (0.0, 0.0, 0.0),
+            (0.0, 0.0, -1.0),
+            (f32::NAN, 0.0, 1.0),
+            (0.0, f32::INFINITY, 1.0),
+            (0.0, 0.0, f32::INFINITY),
+            (0.0, 0.0, f32::NAN),
+            (1e30, 0.0, 1e-30),
+        ];
+        let mut fits = (0, 0);
+        for near in [None, Some(0.5)] {
+            let camera = Camera { near, ..camera };
+            for p in points.map(Vec3::from) {
+                let q = Vec3::new(0.0, 0.0, 2.0);
+                let mut mesh = Mesh::default();
+                mesh.push_triangle(
+                    [q, q + Vec3::X * 0.1, q + Vec3::Y * 0.1],
+                    -Vec3::Z,
+                    Vec3::ONE,
+                );
+                mesh.push_triangle([p, q, q + Vec3::X * 0.1], -Vec3::Z, Vec3::ONE);
+                let (projection, rect) = (camera.projection(), camera.screen_rect());
+                let c = projection.to_camera(p);
+                let in_front = c.z >= near.unwrap_or(f32::MIN_POSITIVE) && c.z.is_finite();
+                let on_screen = in_front
+                    && projection.project_centred(c).is_some_and(|(x, y, _)| {
+                        (rect.left..=rect.right).contains(&x)
+                            && (rect.top..=rect.bottom).contains(&y)
+                    });
+                let mut v = Vertices::default();
+                v.prepare(&mesh, &camera);
+                let want = (in_front || near.is_none(), on_screen);
+                assert_eq!((v.fit.in_front, v.fit.inside), want, "{p:?}, near {near:?}");
+                assert_eq!(
+                    v.screen.len(),
+                    if on_screen { mesh.positions.len() } else { 0 }
+                );
+                fits.0 += on_screen as usize;
+                fits.1 += !on_screen as usize;
+            }
+        }
+        // Both answers are asked about.
+        assert_eq!(fits, (8, 22));
     }
 
     #[test]
