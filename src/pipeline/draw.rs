@@ -140,9 +140,8 @@ struct Batch<'a, S: Stage> {
 /// place (`index`). Kept out of line: a small function of its own keeps the
 /// light's values in registers, and the shading loop vectorises: sixteen pixels
 /// at a time on a CPU with AVX-512, eight with AVX2, found at run time, four
-/// otherwise. The same
-/// operations in the same order either way (Rust never fuses a multiply and an
-/// add by itself), so the same bytes.
+/// otherwise. The same operations in the same order either way (Rust never
+/// fuses a multiply and an add by itself), so the same bytes.
 #[inline(never)]
 fn shade<S: Stage, I: Interpolation>(batch: Batch<S>, color: &mut [u32]) {
     #[cfg(target_arch = "x86_64")]
