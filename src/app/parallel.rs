@@ -220,9 +220,11 @@ impl Parallel {
                 self.work[block(y)] += cost;
             }
         } else {
-            // The rows of each chunk of vertices, found as they were projected.
-            let cost = (VERTEX_COST * CHUNK) as f64;
-            for &(low, high) in chunks {
+            // The rows of each chunk of vertices, found as they were projected:
+            // a sample of them, as of the vertices above.
+            let every = (chunks.len() * CHUNK / VERTEX_SAMPLE).max(1);
+            let cost = (VERTEX_COST * CHUNK * every) as f64;
+            for &(low, high) in chunks.iter().step_by(every) {
                 self.work[block((low + high) / 2.0)] += cost;
             }
         }
@@ -235,11 +237,21 @@ impl Parallel {
         self.ends.clear();
         for band in 1..n {
             let share = total * band as f64 / n as f64;
-            while b < self.work.len() && done + self.work[b] / 2.0 < share {
+            while b < self.work.len() && done + self.work[b] < share {
                 done += self.work[b];
                 b += 1;
             }
-            self.ends.push((b * block_rows).min(height) as u32);
+            // Within the block that holds the share's end, on the row where
+            // its work, spread evenly over its rows, reaches it: a block
+            // where the triangles crowd may hold a twentieth of the frame.
+            let top = b * block_rows;
+            let rows = block_rows.min(height.saturating_sub(top));
+            let part = match self.work.get(b) {
+                Some(&w) if w > 0.0 => ((share - done) / w).clamp(0.0, 1.0),
+                _ => 0.0,
+            };
+            let end = top + (part * rows as f64).round() as usize;
+            self.ends.push(end.min(height) as u32);
         }
         self.ends.push(camera.height);
     }
@@ -256,7 +268,7 @@ impl Parallel {
             self.weight.resize(blocks, 1.0);
             return;
         }
-        // Each band's blocks (bands end on a block's edge, or at the bottom),
+        // Each band's blocks (a block that two bands share counts for both),
         // its work as weighed so far, and its time.
         let (work, weight) = (&self.work, &mut self.weight);
         let starts = std::iter::once(0).chain(self.ends.iter().map(|&e| e as usize));
@@ -556,11 +568,12 @@ mod tests {
         let wide = Camera::handout(200, 240);
         parallel.balance(&wide);
         assert_eq!(parallel.ends, [120, 240]);
-        // A tall frame is weighed in blocks of rows, each band a whole number of them.
+        // A tall frame is weighed in blocks of rows, a band ending within
+        // one where its share does.
         let tall = Camera::handout(200, 2001);
         parallel.balance(&tall);
         assert_eq!(parallel.work.len(), 251);
-        assert_eq!(parallel.ends, [1000, 2001]);
+        assert_eq!(parallel.ends, [1001, 2001]);
     }
 
     /// Helpers whose one slot no thread serves: every join takes its second

@@ -373,10 +373,17 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
             if grouped.is_some() {
                 // Only the chunks this band's faces name; the others keep
                 // whatever they held, unread.
+                // A run of named chunks is placed in one loop, long enough for
+                // the compiler's several-at-a-time loop (a chunk alone runs
+                // the loop one vertex at a time).
                 places.resize(screen.len(), R::Place::default());
-                for (k, _) in named.iter().enumerate().filter(|(_, &n)| n) {
-                    let chunk = k * CHUNK..((k + 1) * CHUNK).min(screen.len());
-                    for (p, s) in places[chunk.clone()].iter_mut().zip(&screen[chunk]) {
+                let mut k = 0;
+                while let Some(first) = named[k..].iter().position(|&n| n) {
+                    let first = k + first;
+                    let end = named[first..].iter().position(|&n| !n);
+                    k = end.map_or(named.len(), |end| first + end);
+                    let run = first * CHUNK..(k * CHUNK).min(screen.len());
+                    for (p, s) in places[run.clone()].iter_mut().zip(&screen[run]) {
                         *p = place(s);
                     }
                 }
