@@ -139,13 +139,14 @@ struct Batch<'a, S: Stage> {
 /// The handout's `PixelShader` for a batch of pixels, then each colour into its
 /// place (`index`). Kept out of line: a small function of its own keeps the
 /// light's values in registers, and the shading loop vectorises: sixteen pixels
-/// at a time on a CPU with AVX-512, eight with AVX2, found at run time, four
+/// at a time on a CPU with AVX-512 (where the interpolation gains by it,
+/// [`Interpolation::SIXTEEN_LANES`]), eight with AVX2, found at run time, four
 /// otherwise. The same operations in the same order either way (Rust never
 /// fuses a multiply and an add by itself), so the same bytes.
 #[inline(never)]
 fn shade<S: Stage, I: Interpolation>(batch: Batch<S>, color: &mut [u32]) {
     #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx512f") {
+    if I::SIXTEEN_LANES && std::arch::is_x86_feature_detected!("avx512f") {
         // SAFETY: the CPU has AVX-512, as just checked.
         return unsafe { shade_avx512::<S, I>(batch, color) };
     }

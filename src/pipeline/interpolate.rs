@@ -476,6 +476,10 @@ pub trait Interpolation: Copy + Default + Send + 'static {
     fn encode<V: Varying>(zinv: f32, q: V) -> V;
     /// The per-pixel struct at a pixel whose 1/z is `zinv`, from what was carried.
     fn decode<V: Varying>(zinv: f32, q: V) -> V;
+    /// Whether the batch shading loop takes sixteen pixels at a time where the
+    /// CPU has AVX-512 (eight otherwise): as measured, faster with the
+    /// division per pixel, slower without it (docs/performance.md).
+    const SIXTEEN_LANES: bool;
 }
 
 /// Interpolate q/z; at the pixel q = (q/z) · z. What `pixel-light` does.
@@ -488,6 +492,7 @@ pub struct Perspective;
 pub struct Affine;
 
 impl Interpolation for Perspective {
+    const SIXTEEN_LANES: bool = true;
     #[inline]
     fn encode<V: Varying>(zinv: f32, q: V) -> V {
         q * zinv
@@ -499,6 +504,7 @@ impl Interpolation for Perspective {
 }
 
 impl Interpolation for Affine {
+    const SIXTEEN_LANES: bool = false;
     #[inline]
     fn encode<V: Varying>(_: f32, q: V) -> V {
         q
