@@ -372,11 +372,10 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
             let v = &view.viewport;
             let place = |s: &ScreenVertex<Nothing>| self.raster.place(s.x, s.y, v);
             if grouped.is_some() {
-                // Only the chunks this band's faces name; the others keep
-                // whatever they held, unread.
-                // A run of named chunks is placed in one loop, long enough for
-                // the compiler's several-at-a-time loop (a chunk alone runs
-                // the loop one vertex at a time).
+                // Only the chunks this band's faces name (the others keep
+                // whatever they held, unread), a run of them in one loop: long
+                // enough for the compiler's several-at-a-time loop, which a
+                // chunk alone runs one vertex at a time.
                 places.resize(screen.len(), R::Place::default());
                 let mut k = 0;
                 while let Some(first) = named[k..].iter().position(|&n| n) {
