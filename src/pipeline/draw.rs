@@ -139,7 +139,7 @@ struct Batch<'a, S: Stage> {
 /// The handout's `PixelShader` for a batch of pixels, then each colour into its
 /// place (`index`). Kept out of line: a small function of its own keeps the
 /// light's values in registers, and the shading loop vectorises: sixteen pixels
-/// at a time on a CPU with AVX-512 (where the interpolation gains by it,
+/// at a time on a CPU with AVX-512 (where that was measured faster,
 /// [`Interpolation::SIXTEEN_LANES`]), eight with AVX2, found at run time, four
 /// otherwise. The same operations in the same order either way (Rust never
 /// fuses a multiply and an add by itself), so the same bytes.
@@ -377,14 +377,15 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
                 // enough for the compiler's several-at-a-time loop, which a
                 // chunk alone runs one vertex at a time.
                 places.resize(screen.len(), R::Place::default());
-                let mut k = 0;
-                while let Some(first) = named[k..].iter().position(|&n| n) {
-                    let first = k + first;
-                    let end = named[first..].iter().position(|&n| !n);
-                    k = end.map_or(named.len(), |end| first + end);
-                    let run = first * CHUNK..(k * CHUNK).min(screen.len());
-                    for (p, s) in places[run.clone()].iter_mut().zip(&screen[run]) {
-                        *p = place(s);
+                let mut first = 0;
+                for run in named.chunk_by(|a, b| a == b) {
+                    let chunks = first..first + run.len();
+                    first = chunks.end;
+                    if run[0] {
+                        let run = chunks.start * CHUNK..(chunks.end * CHUNK).min(screen.len());
+                        for (p, s) in places[run.clone()].iter_mut().zip(&screen[run]) {
+                            *p = place(s);
+                        }
                     }
                 }
             } else {
