@@ -52,7 +52,7 @@ pub struct Pipeline<V: Varying, I: Interpolation = Perspective, R: Rasterizer = 
     /// vertices they name ([`FaceGroups`]).
     runs: Vec<(Range<usize>, bool)>,
     named: Vec<bool>,
-    visible: Visible<V>,
+    visible: Visible<I::Kept<V>>,
     stats: Stats,
     interpolation: PhantomData<I>,
 }
@@ -104,11 +104,12 @@ pub struct Stats {
 /// exactly as if each pixel were shaded at once. The arrays hold
 /// [`BATCH_PIXELS`] pixels, made in the first frame: however the bands are
 /// split, no later frame allocates.
-struct Visible<V> {
+struct Visible<K> {
     /// Where each pixel goes in the target: 32 bits, half the traffic of a
     /// `usize` (a larger target is shaded pixel by pixel).
     index: Vec<u32>,
-    carried: Vec<(f32, V)>,
+    /// What each pixel keeps for its shading ([`Interpolation::keep`]).
+    kept: Vec<K>,
     /// How many pixels wait, and the surface of the faces they are on.
     waiting: usize,
     surface: Surface,
@@ -117,36 +118,35 @@ struct Visible<V> {
 /// The most pixels [`Visible`] shades at once.
 const BATCH_PIXELS: usize = 1 << 14;
 
-impl<V: Varying> Visible<V> {
+impl<K: Copy + Default> Visible<K> {
     /// The arrays at their full length, if they are not already.
     fn reserve(&mut self) {
         if self.index.len() < BATCH_PIXELS {
             self.index.resize(BATCH_PIXELS, 0);
-            self.carried.resize(BATCH_PIXELS, (0.0, V::default()));
+            self.kept.resize(BATCH_PIXELS, K::default());
         }
     }
 }
 
 /// A batch of [`Visible`] pixels to shade: the stage and surface they are
 /// shaded with, where each goes and what it carries.
-struct Batch<'a, S: Stage> {
+struct Batch<'a, S: Stage, I: Interpolation> {
     stage: &'a S,
     surface: &'a Surface,
     index: &'a [u32],
-    carried: &'a [(f32, S::Varying)],
+    kept: &'a [I::Kept<S::Varying>],
 }
 
 /// The handout's `PixelShader` for a batch of pixels, then each colour into its
 /// place (`index`). Kept out of line: a small function of its own keeps the
 /// light's values in registers, and the shading loop vectorises: sixteen pixels
-/// at a time on a CPU with AVX-512 (where that was measured faster,
-/// [`Interpolation::SIXTEEN_LANES`]), eight with AVX2, found at run time, four
+/// at a time on a CPU with AVX-512, eight with AVX2, found at run time, four
 /// otherwise. The same operations in the same order either way (Rust never
 /// fuses a multiply and an add by itself), so the same bytes.
 #[inline(never)]
-fn shade<S: Stage, I: Interpolation>(batch: Batch<S>, color: &mut [u32]) {
+fn shade<S: Stage, I: Interpolation>(batch: Batch<S, I>, color: &mut [u32]) {
     #[cfg(target_arch = "x86_64")]
-    if I::SIXTEEN_LANES && std::arch::is_x86_feature_detected!("avx512f") {
+    if std::arch::is_x86_feature_detected!("avx512f") {
         // SAFETY: the CPU has AVX-512, as just checked.
         return unsafe { shade_avx512::<S, I>(batch, color) };
     }
@@ -162,37 +162,39 @@ fn shade<S: Stage, I: Interpolation>(batch: Batch<S>, color: &mut [u32]) {
 /// rasterizer's loop in `fill` was slower, its helpers no longer inlined.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-fn shade_avx2<S: Stage, I: Interpolation>(batch: Batch<S>, color: &mut [u32]) {
+fn shade_avx2<S: Stage, I: Interpolation>(batch: Batch<S, I>, color: &mut [u32]) {
     shade_loop::<S, I, 8>(batch, color)
 }
 
 /// [`shade_loop`] compiled for AVX-512, sixteen pixels at a time.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f")]
-fn shade_avx512<S: Stage, I: Interpolation>(batch: Batch<S>, color: &mut [u32]) {
+fn shade_avx512<S: Stage, I: Interpolation>(batch: Batch<S, I>, color: &mut [u32]) {
     shade_loop::<S, I, 16>(batch, color)
 }
 
 /// [`shade`]'s work, inlined into each of its compilations: `LANES` pixels at
 /// a time into a small array, written to the target from there.
 #[inline(always)]
-fn shade_loop<S: Stage, I: Interpolation, const LANES: usize>(batch: Batch<S>, color: &mut [u32]) {
+fn shade_loop<S: Stage, I: Interpolation, const LANES: usize>(
+    batch: Batch<S, I>,
+    color: &mut [u32],
+) {
     let Batch {
         stage,
         surface,
         index,
-        carried,
+        kept,
     } = batch;
-    let colour =
-        |&(zinv, q): &(f32, S::Varying)| pack(stage.pixel_shader(&I::decode(zinv, q), surface));
-    let (index, carried) = (
+    let colour = |&k: &I::Kept<S::Varying>| pack(stage.pixel_shader(&I::decode_kept(k), surface));
+    let (index, kept) = (
         index.chunks_exact(LANES),
-        carried[..index.len()].chunks_exact(LANES),
+        kept[..index.len()].chunks_exact(LANES),
     );
-    let rest = index.remainder().iter().zip(carried.remainder());
-    for (index, carried) in index.zip(carried) {
+    let rest = index.remainder().iter().zip(kept.remainder());
+    for (index, kept) in index.zip(kept) {
         let mut shaded = [0u32; LANES];
-        for (c, q) in shaded.iter_mut().zip(carried) {
+        for (c, q) in shaded.iter_mut().zip(kept) {
             *c = colour(q);
         }
         for (&i, &c) in index.iter().zip(&shaded) {
@@ -218,7 +220,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Default for Pipeline<V, I, R> 
             named: Vec::new(),
             visible: Visible {
                 index: Vec::new(),
-                carried: Vec::new(),
+                kept: Vec::new(),
                 waiting: 0,
                 surface: Surface::default(),
             },
@@ -547,7 +549,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         // Made full length in `draw_faces`, in the first frame.
         let Visible {
             index,
-            carried,
+            kept,
             waiting,
             surface: waiting_on,
         } = &mut self.visible;
@@ -556,7 +558,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         }
         // Slices, not the vectors: the pixel loop keeps their addresses in
         // registers instead of reloading them after every store.
-        let (index, carried) = (&mut index[..], &mut carried[..]);
+        let (index, kept) = (&mut index[..], &mut kept[..]);
         // The batch's pixels so far, always fewer than `BATCH_PIXELS`: a count
         // in a register, where `Vec::push` would reload the length each pixel.
         let (mut n, before) = (*waiting, *waiting);
@@ -574,7 +576,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
                 // reaching it.
                 unsafe {
                     *index.get_unchecked_mut(n) = i as u32;
-                    *carried.get_unchecked_mut(n) = (p.zinv, p.varying);
+                    *kept.get_unchecked_mut(n) = I::keep(p.zinv, p.varying);
                 }
                 n += 1;
                 if n == BATCH_PIXELS {
@@ -585,7 +587,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
                             stage,
                             surface: &*waiting_on,
                             index,
-                            carried,
+                            kept,
                         };
                         shade::<S, I>(batch, color);
                     }
@@ -612,7 +614,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
     fn shade_waiting<S: Stage<Varying = V>>(&mut self, stage: &S, target: &mut Target) {
         let Visible {
             index,
-            carried,
+            kept,
             waiting,
             surface,
         } = &mut self.visible;
@@ -622,7 +624,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
                 stage,
                 surface,
                 index,
-                carried,
+                kept,
             };
             shade::<S, I>(batch, color);
         }
@@ -1358,9 +1360,10 @@ mod tests {
         // The loop for AVX2 or AVX-512 is the one that runs here if the CPU has
         // it; the figures test it against bytes made before it existed. This
         // holds both to the plain loop pixel by pixel, over points nearer and
-        // farther than the light, and a count that is no multiple of 16.
+        // farther than the light, and a count that is no multiple of 16, for
+        // what each interpolation keeps of a pixel.
         #[cfg(target_arch = "x86_64")]
-        if std::arch::is_x86_feature_detected!("avx2") {
+        fn same_bytes<I: Interpolation>() {
             let stage = PixelLight {
                 light: Light::handout(),
             };
@@ -1374,7 +1377,7 @@ mod tests {
             };
             let n = 4099;
             let fraction = |k: usize, a: f32| (k as f32 * a).fract();
-            let carried: Vec<(f32, Position)> = (0..n)
+            let kept: Vec<I::Kept<Position>> = (0..n)
                 .map(|k| {
                     let world = Vec3::new(
                         2.0 * fraction(k, 0.414_214) - 1.0,
@@ -1382,33 +1385,38 @@ mod tests {
                         2.0 * fraction(k, 0.618_034) - 1.0,
                     );
                     let zinv = 1.0 / (world.z + 3.0);
-                    (zinv, Perspective::encode(zinv, Position { world }))
+                    I::keep(zinv, I::encode(zinv, Position { world }))
                 })
                 .collect();
             // Every pixel in its own place, in reverse order, so that the
             // colours are compared pixel by pixel.
             let index: Vec<u32> = (0..n as u32).rev().collect();
-            let batch = || Batch {
+            let batch = || Batch::<PixelLight, I> {
                 stage: &stage,
                 surface: &surface,
                 index: &index,
-                carried: &carried,
+                kept: &kept,
             };
             let (mut plain, mut wide) = (vec![0; n], vec![0; n]);
-            shade_loop::<PixelLight, Perspective, 8>(batch(), &mut plain);
-            // SAFETY: the CPU has AVX2, as checked above.
-            unsafe { shade_avx2::<PixelLight, Perspective>(batch(), &mut wide) };
+            shade_loop::<PixelLight, I, 8>(batch(), &mut plain);
+            // SAFETY: the CPU has AVX2, as the caller checked.
+            unsafe { shade_avx2::<PixelLight, I>(batch(), &mut wide) };
             assert_eq!(plain, wide);
             if std::arch::is_x86_feature_detected!("avx512f") {
                 let mut widest = vec![0; n];
                 // SAFETY: the CPU has AVX-512, as just checked.
-                unsafe { shade_avx512::<PixelLight, Perspective>(batch(), &mut widest) };
+                unsafe { shade_avx512::<PixelLight, I>(batch(), &mut widest) };
                 assert_eq!(plain, widest);
             }
             let distinct: std::collections::HashSet<_> = plain.iter().collect();
             // 116 colours: the light's whole range, from the indirect term
             // alone to a full red.
             assert!(distinct.len() > 100, "{} colours", distinct.len());
+        }
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            same_bytes::<Perspective>();
+            same_bytes::<Affine>();
         }
     }
 

@@ -476,12 +476,12 @@ pub trait Interpolation: Copy + Default + Send + 'static {
     fn encode<V: Varying>(zinv: f32, q: V) -> V;
     /// The per-pixel struct at a pixel whose 1/z is `zinv`, from what was carried.
     fn decode<V: Varying>(zinv: f32, q: V) -> V;
-    /// Whether the batch shading loop takes sixteen pixels at a time where the
-    /// CPU has AVX-512 (eight otherwise). Measured on the box at 500x500: for
-    /// pixel-light sixteen are faster perspective-correct and slower affine;
-    /// the textured, normal-mapped and shadowed stages take the same time
-    /// either way (docs/performance.md).
-    const SIXTEEN_LANES: bool;
+    /// What a pixel that passed the depth test keeps until it is shaded: the
+    /// carried struct, with its 1/z only if `decode` needs it.
+    type Kept<V: Varying>: Copy + Default + Send;
+    fn keep<V: Varying>(zinv: f32, q: V) -> Self::Kept<V>;
+    /// The per-pixel struct of a kept pixel, as `decode` gives it.
+    fn decode_kept<V: Varying>(kept: Self::Kept<V>) -> V;
 }
 
 /// Interpolate q/z; at the pixel q = (q/z) · z. What `pixel-light` does.
@@ -494,7 +494,6 @@ pub struct Perspective;
 pub struct Affine;
 
 impl Interpolation for Perspective {
-    const SIXTEEN_LANES: bool = true;
     #[inline]
     fn encode<V: Varying>(zinv: f32, q: V) -> V {
         q * zinv
@@ -503,16 +502,33 @@ impl Interpolation for Perspective {
     fn decode<V: Varying>(zinv: f32, q: V) -> V {
         q * (1.0 / zinv)
     }
+    type Kept<V: Varying> = (f32, V);
+    #[inline]
+    fn keep<V: Varying>(zinv: f32, q: V) -> (f32, V) {
+        (zinv, q)
+    }
+    #[inline]
+    fn decode_kept<V: Varying>((zinv, q): (f32, V)) -> V {
+        Self::decode(zinv, q)
+    }
 }
 
 impl Interpolation for Affine {
-    const SIXTEEN_LANES: bool = false;
     #[inline]
     fn encode<V: Varying>(_: f32, q: V) -> V {
         q
     }
     #[inline]
     fn decode<V: Varying>(_: f32, q: V) -> V {
+        q
+    }
+    type Kept<V: Varying> = V;
+    #[inline]
+    fn keep<V: Varying>(_: f32, q: V) -> V {
+        q
+    }
+    #[inline]
+    fn decode_kept<V: Varying>(q: V) -> V {
         q
     }
 }
