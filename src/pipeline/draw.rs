@@ -129,7 +129,7 @@ impl<K: Copy + Default> Visible<K> {
 }
 
 /// A batch of [`Visible`] pixels to shade: the stage and surface they are
-/// shaded with, where each goes and what it carries.
+/// shaded with, where each goes and what it keeps.
 struct Batch<'a, S: Stage, I: Interpolation> {
     stage: &'a S,
     surface: &'a Surface,

@@ -472,13 +472,16 @@ pub fn line_pixels<V>(a: &Pixel<V>, b: &Pixel<V>) -> usize {
 /// illumination and as Figure 8 shows the mistake for the position. 1/z itself is
 /// carried as it is either way, so depth and the visible surfaces do not change.
 pub trait Interpolation: Copy + Default + Send + 'static {
+    /// What a pixel that passed the depth test keeps until it is shaded in a
+    /// batch: the carried struct, with its 1/z only if `decode` reads it, so
+    /// that the shading loop loads nothing it does not use (an unread 1/z
+    /// beside each q kept the affine loop from vectorising well).
+    type Kept<V: Varying>: Copy + Default + Send;
     /// What is carried for a per-pixel struct `q` at a vertex whose 1/z is `zinv`.
     fn encode<V: Varying>(zinv: f32, q: V) -> V;
     /// The per-pixel struct at a pixel whose 1/z is `zinv`, from what was carried.
     fn decode<V: Varying>(zinv: f32, q: V) -> V;
-    /// What a pixel that passed the depth test keeps until it is shaded: the
-    /// carried struct, with its 1/z only if `decode` needs it.
-    type Kept<V: Varying>: Copy + Default + Send;
+    /// What a pixel whose 1/z is `zinv` and carried struct `q` keeps.
     fn keep<V: Varying>(zinv: f32, q: V) -> Self::Kept<V>;
     /// The per-pixel struct of a kept pixel, as `decode` gives it.
     fn decode_kept<V: Varying>(kept: Self::Kept<V>) -> V;
@@ -494,6 +497,7 @@ pub struct Perspective;
 pub struct Affine;
 
 impl Interpolation for Perspective {
+    type Kept<V: Varying> = (f32, V);
     #[inline]
     fn encode<V: Varying>(zinv: f32, q: V) -> V {
         q * zinv
@@ -502,7 +506,6 @@ impl Interpolation for Perspective {
     fn decode<V: Varying>(zinv: f32, q: V) -> V {
         q * (1.0 / zinv)
     }
-    type Kept<V: Varying> = (f32, V);
     #[inline]
     fn keep<V: Varying>(zinv: f32, q: V) -> (f32, V) {
         (zinv, q)
@@ -514,6 +517,7 @@ impl Interpolation for Perspective {
 }
 
 impl Interpolation for Affine {
+    type Kept<V: Varying> = V;
     #[inline]
     fn encode<V: Varying>(_: f32, q: V) -> V {
         q
@@ -522,7 +526,6 @@ impl Interpolation for Affine {
     fn decode<V: Varying>(_: f32, q: V) -> V {
         q
     }
-    type Kept<V: Varying> = V;
     #[inline]
     fn keep<V: Varying>(_: f32, q: V) -> V {
         q
