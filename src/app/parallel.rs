@@ -35,7 +35,8 @@ pub struct Parallel {
     stats: Stats,
     /// The faces' tangent frames, for a figure with a normal map.
     frames: Vec<TangentFrame>,
-    /// The mesh's vertices in camera space, prepared once per frame for every band.
+    /// The mesh's vertices as the frame sees them, prepared once per frame for
+    /// every band.
     vertices: Vertices,
     /// Each block of rows' work this frame, and where the bands end (kept
     /// between frames).

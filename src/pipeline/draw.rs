@@ -289,7 +289,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
             "a stage with a depth test needs a depth buffer"
         );
         assert_eq!(
-            vertices.camera_space.len(),
+            vertices.points,
             mesh.positions.len(),
             "vertices prepared for another mesh"
         );
@@ -337,7 +337,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         }
         self.raster
             .reserve(&mut self.scratch, camera.height as usize);
-        let camera_space = &vertices.camera_space[..];
+        let projection = camera.projection();
         // A band of a frame in full view passes over the triangles wholly above or
         // below its rows before any shading or setup (the band that holds them
         // draws them), so that threads share the per-triangle work. The rows are
@@ -439,7 +439,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
                 let at = |k: usize| face.vertices[k] as usize;
                 let in_camera_space = || {
                     [0, 1, 2].map(|k| CameraVertex {
-                        position: camera_space[at(k)],
+                        position: vertices.camera_space(&projection, &mesh.positions, at(k)),
                         varying: varyings[k],
                     })
                 };
@@ -871,7 +871,12 @@ struct Fit {
 /// them lie, which spares each triangle the tests the whole mesh makes needless.
 #[derive(Default)]
 pub struct Vertices {
+    /// How many points the mesh had.
+    points: usize,
+    /// Each vertex in camera space (eq. 8), when the mesh is not in full view
+    /// (`in_camera_space`); left as it was otherwise.
     camera_space: Vec<Vec3>,
+    in_camera_space: bool,
     /// Each vertex projected (eq. 3 and 4, from the screen's centre, and 1/z)
     /// when the whole mesh is in view, so that a corner shared by many faces is
     /// projected once; empty otherwise.
@@ -927,7 +932,12 @@ impl Vertices {
     /// once.
     pub fn prepare_split(&mut self, mesh: &Mesh, camera: &Camera, join: &impl Join) {
         let n = mesh.positions.len();
-        self.camera_space.resize(n, Vec3::ZERO);
+        self.points = n;
+        // Room for the points in camera space, in case the mesh is not in full
+        // view: made once, so that no later frame allocates, and not written
+        // unless needed.
+        self.camera_space
+            .reserve(n.saturating_sub(self.camera_space.len()));
         self.screen.resize(n, ScreenVertex::default());
         let chunks = if self.groups.fit(mesh) {
             n.div_ceil(CHUNK)
@@ -938,15 +948,19 @@ impl Vertices {
         let view = (camera.projection(), camera.near, camera.screen_rect());
         let mut fit = project_all(
             &mesh.positions,
-            &mut self.camera_space,
             (&mut self.screen, &mut self.rows),
             &view,
             join,
         );
         fit.in_front |= camera.near.is_none();
-        if !(fit.inside && fit.in_front) {
+        // In full view every face is drawn from `screen`; the few that need a
+        // point in camera space (points, lines) take it again from the mesh.
+        self.in_camera_space = !(fit.inside && fit.in_front);
+        if self.in_camera_space {
             self.screen.clear();
             self.rows.clear();
+            self.camera_space.resize(n, Vec3::ZERO);
+            to_camera_all(&mesh.positions, &mut self.camera_space, &view.0, join);
         }
         let groups = match self.rows.is_empty() {
             true => 0,
@@ -956,17 +970,27 @@ impl Vertices {
         rows_of_groups(&self.groups, 0, &self.rows, &mut self.group_rows, join);
         self.fit = fit;
     }
+
+    /// Vertex `v` in camera space (eq. 8), as [`Vertices::prepare`] found it.
+    fn camera_space(&self, projection: &Projection, positions: &[Vec3], v: usize) -> Vec3 {
+        match self.in_camera_space {
+            true => self.camera_space[v],
+            // The mesh in full view: the same function on the same point.
+            false => projection.to_camera(positions[v]),
+        }
+    }
 }
 
 /// Vertices handed to one piece of work at a time when the work is split.
 const PART: usize = 1 << 15;
 
-/// Every point of `positions` in camera space and projected (with the rows of
-/// each chunk of them, if `rows` is not empty), and where they all lie (before
-/// the near plane is taken into account), in parts split by `join`.
+/// Every point of `positions` projected (with the rows of each chunk of them,
+/// if `rows` is not empty), and where they all lie (before the near plane is
+/// taken into account), in parts split by `join`. Only what a frame in full
+/// view reads is written: the points in camera space are found again, apart,
+/// for a mesh that is not ([`to_camera_all`]).
 fn project_all(
     positions: &[Vec3],
-    camera_space: &mut [Vec3],
     (screen, rows): (&mut [ScreenVertex<Nothing>], &mut [(f32, f32)]),
     view: &(Projection, Option<f32>, Rect),
     join: &impl Join,
@@ -975,13 +999,12 @@ fn project_all(
         // Split between chunks, so that each part finds its own chunks' rows.
         let half = (positions.len() / 2).next_multiple_of(CHUNK);
         let (p, q) = positions.split_at(half);
-        let (c, d) = camera_space.split_at_mut(half);
         let (s, t) = screen.split_at_mut(half);
         let (r, u) = rows.split_at_mut((half / CHUNK).min(rows.len()));
         let (mut first, mut second) = (Fit::default(), Fit::default());
         join.join(
-            || first = project_all(p, c, (s, r), view, join),
-            || second = project_all(q, d, (t, u), view, join),
+            || first = project_all(p, (s, r), view, join),
+            || second = project_all(q, (t, u), view, join),
         );
         return Fit {
             in_front: first.in_front && second.in_front,
@@ -994,9 +1017,8 @@ fn project_all(
     // Without a branch per point (`&`, not `&&`), so that the compiler may take
     // several points at once. A point off the screen is written too: the caller
     // reads the screen only if every point is on it.
-    for ((&p, c), s) in positions.iter().zip(camera_space).zip(screen.iter_mut()) {
+    for (&p, s) in positions.iter().zip(screen.iter_mut()) {
         let v = projection.to_camera(p);
-        *c = v;
         let (x, y, zinv) = projection.project_centred_or_not_finite(v);
         *s = ScreenVertex {
             x,
@@ -1019,6 +1041,28 @@ fn project_all(
         chunk_rows(screen, rows);
     }
     fit
+}
+
+/// Every point of `positions` in camera space, in parts split by `join`.
+fn to_camera_all(
+    positions: &[Vec3],
+    camera_space: &mut [Vec3],
+    projection: &Projection,
+    join: &impl Join,
+) {
+    if positions.len() > PART {
+        let half = positions.len() / 2;
+        let (p, q) = positions.split_at(half);
+        let (c, d) = camera_space.split_at_mut(half);
+        join.join(
+            || to_camera_all(p, c, projection, join),
+            || to_camera_all(q, d, projection, join),
+        );
+        return;
+    }
+    for (&p, c) in positions.iter().zip(camera_space) {
+        *c = projection.to_camera(p);
+    }
 }
 
 /// The rows of each group of faces from `first` on, into `out`, in parts split
@@ -1193,15 +1237,23 @@ mod tests {
                 true => v.prepare_split(mesh, &camera, &Backwards),
             }
             let screen: Vec<_> = v.screen.iter().map(|s| [s.x, s.y, s.zinv]).collect();
-            (v.camera_space, screen, v.fit.in_front, v.fit.inside)
+            let projection = camera.projection();
+            let points = mesh.positions.len();
+            let camera_space: Vec<_> = (0..points)
+                .map(|k| v.camera_space(&projection, &mesh.positions, k))
+                .collect();
+            let kept = v.in_camera_space;
+            (camera_space, kept, screen, v.fit.in_front, v.fit.inside)
         };
         let whole = seen(&mesh, false);
-        assert_eq!(whole.1.len(), mesh.positions.len());
+        // In view: projected, and nothing kept in camera space.
+        assert_eq!((whole.1, whole.2.len()), (false, mesh.positions.len()));
         assert_eq!(seen(&mesh, true), whole);
         let last = mesh.positions.len() - 1;
         mesh.positions[last].z = -1.0;
         let behind = seen(&mesh, false);
-        assert!(behind.1.is_empty() && !behind.2 && !behind.3);
+        assert!(behind.1);
+        assert!(behind.2.is_empty() && !behind.3 && !behind.4);
         assert_eq!(seen(&mesh, true), behind);
     }
 
