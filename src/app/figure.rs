@@ -14,7 +14,7 @@ use crate::pipeline::raster::{EdgeRaster, Lines, Rasterizer, RowRaster};
 use crate::pipeline::StageName;
 use crate::pipeline::{
     Affine, Camera, Depth, Filled, Frame, Interpolation, Light, Lighting, Mesh, Perspective,
-    Pipeline, PixelLight, Points, Stage, Target, Varying, VertexLight, Wireframe,
+    Pipeline, PixelLight, Points, Primitive, Stage, Target, Varying, VertexLight, Wireframe,
 };
 use glam::Vec3;
 use std::marker::PhantomData;
@@ -271,6 +271,9 @@ pub trait Render: Send {
     /// Whether the stage tests depth, so its target needs a depth buffer.
     fn depth_test(&self) -> bool;
 
+    /// What the stage draws for each triangle.
+    fn primitive(&self) -> Primitive;
+
     /// Sizes `frame` to the camera's image and draws `mesh` into all of it.
     fn render(&mut self, inputs: &Inputs, mesh: &Mesh, camera: &Camera, frame: &mut Frame) {
         frame.resize(camera.width, camera.height, self.depth_test());
@@ -308,6 +311,10 @@ impl<M: MakeStage, I: Interpolation, R: Rasterizer> Render for Drawn<M, I, R> {
 
     fn depth_test(&self) -> bool {
         <M::Stage<'static> as Stage>::DEPTH_TEST
+    }
+
+    fn primitive(&self) -> Primitive {
+        <M::Stage<'static> as Stage>::PRIMITIVE
     }
 }
 

@@ -122,12 +122,14 @@ impl Parallel {
         let model = model.into();
         let threads = threads.max(1);
         let helpers = Helpers::new(threads)?;
+        let pipelines: Vec<_> = (0..threads).map(|_| figure.pipeline_for(model)).collect();
         let mut vertices = Vertices::default();
+        vertices.draw_as(pipelines[0].primitive());
         if threads > 1 {
             vertices.group_faces(model.mesh);
         }
         Ok(Parallel {
-            pipelines: (0..threads).map(|_| figure.pipeline_for(model)).collect(),
+            pipelines,
             helpers,
             stats: Stats::default(),
             frames: figure.tangent_frames(model),

@@ -268,6 +268,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
     ) {
         // Taken out of `self` while the faces are drawn, and put back for the next frame.
         let mut vertices = take(&mut self.vertices);
+        vertices.draw_as(S::PRIMITIVE);
         vertices.prepare(mesh, camera);
         self.draw_prepared(stage, mesh, camera, &vertices, target);
         self.vertices = vertices;
@@ -873,10 +874,12 @@ struct Fit {
 pub struct Vertices {
     /// How many points the mesh had.
     points: usize,
-    /// Each vertex in camera space (eq. 8), when the mesh is not in full view
-    /// (`in_camera_space`); left as it was otherwise.
+    /// Each vertex in camera space (eq. 8), unless the frame draws filled faces
+    /// of a mesh in full view (`in_camera_space`); left as it was then.
     camera_space: Vec<Vec3>,
     in_camera_space: bool,
+    /// Whether the frames draw filled faces ([`Vertices::draw_as`]).
+    polygons: bool,
     /// Each vertex projected (eq. 3 and 4, from the screen's centre, and 1/z)
     /// when the whole mesh is in view, so that a corner shared by many faces is
     /// projected once; empty otherwise.
@@ -898,6 +901,13 @@ impl Vertices {
     /// can see where the triangles are; empty otherwise.
     pub fn screen(&self) -> &[ScreenVertex<Nothing>] {
         &self.screen
+    }
+
+    /// Says what the frames prepared from now on draw: filled faces of a mesh
+    /// in full view are drawn from the projections alone, so no points in
+    /// camera space are kept for them; points and lines keep them.
+    pub fn draw_as(&mut self, primitive: Primitive) {
+        self.polygons = primitive == Primitive::Polygons;
     }
 
     /// Groups `mesh`'s faces ([`FaceGroups`]), so that each band of the frames
@@ -953,12 +963,14 @@ impl Vertices {
             join,
         );
         fit.in_front |= camera.near.is_none();
-        // In full view every face is drawn from `screen`; the few that need a
-        // point in camera space (points, lines) take it again from the mesh.
-        self.in_camera_space = !(fit.inside && fit.in_front);
-        if self.in_camera_space {
+        let in_view = fit.inside && fit.in_front;
+        if !in_view {
             self.screen.clear();
             self.rows.clear();
+        }
+        // In full view every filled face is drawn from `screen`.
+        self.in_camera_space = !(in_view && self.polygons);
+        if self.in_camera_space {
             self.camera_space.resize(n, Vec3::ZERO);
             to_camera_all(&mesh.positions, &mut self.camera_space, &view.0, join);
         }
@@ -975,7 +987,7 @@ impl Vertices {
     fn camera_space(&self, projection: &Projection, positions: &[Vec3], v: usize) -> Vec3 {
         match self.in_camera_space {
             true => self.camera_space[v],
-            // The mesh in full view: the same function on the same point.
+            // Prepared for filled faces: the same function on the same point.
             false => projection.to_camera(positions[v]),
         }
     }
@@ -1286,6 +1298,7 @@ mod tests {
         }
         let seen = |mesh: &Mesh, split: bool| {
             let mut v = Vertices::default();
+            v.draw_as(Primitive::Polygons);
             match split {
                 false => v.prepare(mesh, &camera),
                 true => v.prepare_split(mesh, &camera, &Backwards),
