@@ -294,6 +294,10 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
             mesh.positions.len(),
             "vertices prepared for another mesh"
         );
+        assert!(
+            S::PRIMITIVE == Primitive::Polygons || vertices.keeps_camera_space(),
+            "vertices prepared for filled faces"
+        );
         target.clear();
         let mut view = View::new(camera, target, self.lines);
         let fit = vertices.fit;
@@ -338,7 +342,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         }
         self.raster
             .reserve(&mut self.scratch, camera.height as usize);
-        let projection = camera.projection();
+        let camera_space = &vertices.camera_space[..];
         // A band of a frame in full view passes over the triangles wholly above or
         // below its rows before any shading or setup (the band that holds them
         // draws them), so that threads share the per-triangle work. The rows are
@@ -440,7 +444,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
                 let at = |k: usize| face.vertices[k] as usize;
                 let in_camera_space = || {
                     [0, 1, 2].map(|k| CameraVertex {
-                        position: vertices.camera_space(&projection, &mesh.positions, at(k)),
+                        position: camera_space[at(k)],
                         varying: varyings[k],
                     })
                 };
@@ -875,9 +879,9 @@ pub struct Vertices {
     /// How many points the mesh had.
     points: usize,
     /// Each vertex in camera space (eq. 8), unless the frame draws filled faces
-    /// of a mesh in full view (`in_camera_space`); left as it was then.
+    /// of a mesh in full view ([`Vertices::keeps_camera_space`]); left as it
+    /// was then.
     camera_space: Vec<Vec3>,
-    in_camera_space: bool,
     /// Whether the frames draw filled faces ([`Vertices::draw_as`]).
     polygons: bool,
     /// Each vertex projected (eq. 3 and 4, from the screen's centre, and 1/z)
@@ -943,9 +947,9 @@ impl Vertices {
     pub fn prepare_split(&mut self, mesh: &Mesh, camera: &Camera, join: &impl Join) {
         let n = mesh.positions.len();
         self.points = n;
-        // Room for the points in camera space, in case the mesh is not in full
-        // view: made once, so that no later frame allocates, and not written
-        // unless needed.
+        // Room for the points in camera space, for a frame that keeps them
+        // (`keeps_camera_space`): made once, so that no later frame allocates,
+        // and not written unless needed.
         self.camera_space
             .reserve(n.saturating_sub(self.camera_space.len()));
         self.screen.resize(n, ScreenVertex::default());
@@ -963,14 +967,12 @@ impl Vertices {
             join,
         );
         fit.in_front |= camera.near.is_none();
-        let in_view = fit.inside && fit.in_front;
-        if !in_view {
+        if !(fit.inside && fit.in_front) {
             self.screen.clear();
             self.rows.clear();
         }
-        // In full view every filled face is drawn from `screen`.
-        self.in_camera_space = !(in_view && self.polygons);
-        if self.in_camera_space {
+        self.fit = fit;
+        if self.keeps_camera_space() {
             self.camera_space.resize(n, Vec3::ZERO);
             to_camera_all(&mesh.positions, &mut self.camera_space, &view.0, join);
         }
@@ -980,16 +982,12 @@ impl Vertices {
         };
         self.group_rows.resize(groups, (0.0, 0.0));
         rows_of_groups(&self.groups, 0, &self.rows, &mut self.group_rows, join);
-        self.fit = fit;
     }
 
-    /// Vertex `v` in camera space (eq. 8), as [`Vertices::prepare`] found it.
-    fn camera_space(&self, projection: &Projection, positions: &[Vec3], v: usize) -> Vec3 {
-        match self.in_camera_space {
-            true => self.camera_space[v],
-            // Prepared for filled faces: the same function on the same point.
-            false => projection.to_camera(positions[v]),
-        }
+    /// Whether the points in camera space are kept this frame: not for filled
+    /// faces of a mesh in full view, which are drawn from `screen` alone.
+    fn keeps_camera_space(&self) -> bool {
+        !(self.polygons && self.fit.inside && self.fit.in_front)
     }
 }
 
@@ -1304,12 +1302,8 @@ mod tests {
                 true => v.prepare_split(mesh, &camera, &Backwards),
             }
             let screen: Vec<_> = v.screen.iter().map(|s| [s.x, s.y, s.zinv]).collect();
-            let projection = camera.projection();
-            let points = mesh.positions.len();
-            let camera_space: Vec<_> = (0..points)
-                .map(|k| v.camera_space(&projection, &mesh.positions, k))
-                .collect();
-            let kept = v.in_camera_space;
+            let kept = v.keeps_camera_space();
+            let camera_space = kept.then(|| v.camera_space.clone());
             (camera_space, kept, screen, v.fit.in_front, v.fit.inside)
         };
         let whole = seen(&mesh, false);
