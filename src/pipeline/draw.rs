@@ -960,9 +960,20 @@ impl Vertices {
         };
         self.rows.resize(chunks, (0.0, 0.0));
         let view = (camera.projection(), camera.near, camera.screen_rect());
+        // Frames follow each other closely: when the last one kept the points
+        // in camera space, they are written in the same pass as the projections
+        // (and afterwards, apart, if this one needs them after all).
+        let written = self.keeps_camera_space();
+        if written {
+            self.camera_space.resize(n, Vec3::ZERO);
+        }
+        let camera_space = match written {
+            true => &mut self.camera_space[..],
+            false => &mut [],
+        };
         let mut fit = project_all(
             &mesh.positions,
-            (&mut self.screen, &mut self.rows),
+            (camera_space, &mut self.screen, &mut self.rows),
             &view,
             join,
         );
@@ -972,7 +983,7 @@ impl Vertices {
             self.rows.clear();
         }
         self.fit = fit;
-        if self.keeps_camera_space() {
+        if self.keeps_camera_space() && !written {
             self.camera_space.resize(n, Vec3::ZERO);
             to_camera_all(&mesh.positions, &mut self.camera_space, &view.0, join);
         }
@@ -995,13 +1006,12 @@ impl Vertices {
 const PART: usize = 1 << 15;
 
 /// Every point of `positions` projected (with the rows of each chunk of them,
-/// if `rows` is not empty), and where they all lie (before the near plane is
-/// taken into account), in parts split by `join`. Only what a frame in full
-/// view reads is written: the points in camera space are found again, apart,
-/// for a mesh that is not ([`to_camera_all`]).
+/// if `rows` is not empty, and in camera space, if `camera_space` is not
+/// empty), and where they all lie (before the near plane is taken into
+/// account), in parts split by `join`.
 fn project_all(
     positions: &[Vec3],
-    (screen, rows): (&mut [ScreenVertex<Nothing>], &mut [(f32, f32)]),
+    (camera_space, screen, rows): Outputs,
     view: &(Projection, Option<f32>, Rect),
     join: &impl Join,
 ) -> Fit {
@@ -1009,30 +1019,35 @@ fn project_all(
         // Split between chunks, so that each part finds its own chunks' rows.
         let half = (positions.len() / 2).next_multiple_of(CHUNK);
         let (p, q) = positions.split_at(half);
+        let (c, d) = camera_space.split_at_mut(half.min(camera_space.len()));
         let (s, t) = screen.split_at_mut(half);
         let (r, u) = rows.split_at_mut((half / CHUNK).min(rows.len()));
         let (mut first, mut second) = (Fit::default(), Fit::default());
         join.join(
-            || first = project_all(p, (s, r), view, join),
-            || second = project_all(q, (t, u), view, join),
+            || first = project_all(p, (c, s, r), view, join),
+            || second = project_all(q, (d, t, u), view, join),
         );
         return Fit {
             in_front: first.in_front && second.in_front,
             inside: first.inside && second.inside,
         };
     }
-    project_part(positions, (screen, rows), view)
+    project_part(positions, (camera_space, screen, rows), view)
 }
+
+/// Where [`project_all`] writes: the points in camera space (or nothing), the
+/// projections, and each chunk's rows (or nothing).
+type Outputs<'a> = (
+    &'a mut [Vec3],
+    &'a mut [ScreenVertex<Nothing>],
+    &'a mut [(f32, f32)],
+);
 
 /// [`project_all`]'s work on one part, compiled for the widest vectors the CPU
 /// has, found at run time: the division and the products are exact in each
 /// lane, and Rust never fuses a multiply and an add by itself, so the points
 /// are the same bits however many are taken at once.
-fn project_part(
-    positions: &[Vec3],
-    out: (&mut [ScreenVertex<Nothing>], &mut [(f32, f32)]),
-    view: &(Projection, Option<f32>, Rect),
-) -> Fit {
+fn project_part(positions: &[Vec3], out: Outputs, view: &(Projection, Option<f32>, Rect)) -> Fit {
     #[cfg(target_arch = "x86_64")]
     if std::arch::is_x86_feature_detected!("avx512f") {
         // SAFETY: the CPU has AVX-512, as just checked.
@@ -1051,7 +1066,7 @@ fn project_part(
 #[target_feature(enable = "avx2")]
 fn project_part_avx2(
     positions: &[Vec3],
-    out: (&mut [ScreenVertex<Nothing>], &mut [(f32, f32)]),
+    out: Outputs,
     view: &(Projection, Option<f32>, Rect),
 ) -> Fit {
     project_loop(positions, out, view)
@@ -1062,7 +1077,7 @@ fn project_part_avx2(
 #[target_feature(enable = "avx512f")]
 fn project_part_avx512(
     positions: &[Vec3],
-    out: (&mut [ScreenVertex<Nothing>], &mut [(f32, f32)]),
+    out: Outputs,
     view: &(Projection, Option<f32>, Rect),
 ) -> Fit {
     project_loop(positions, out, view)
@@ -1072,7 +1087,7 @@ fn project_part_avx512(
 #[inline(always)]
 fn project_loop(
     positions: &[Vec3],
-    (screen, rows): (&mut [ScreenVertex<Nothing>], &mut [(f32, f32)]),
+    (camera_space, screen, rows): Outputs,
     view: &(Projection, Option<f32>, Rect),
 ) -> Fit {
     let (projection, near, rect) = view;
@@ -1081,7 +1096,7 @@ fn project_loop(
     // Without a branch per point (`&`, not `&&`), so that the compiler may take
     // several points at once. A point off the screen is written too: the caller
     // reads the screen only if every point is on it.
-    for (&p, s) in positions.iter().zip(screen.iter_mut()) {
+    let mut project = |p: Vec3, s: &mut ScreenVertex<Nothing>| {
         let v = projection.to_camera(p);
         let (x, y, zinv) = projection.project_centred_or_not_finite(v);
         *s = ScreenVertex {
@@ -1099,6 +1114,20 @@ fn project_loop(
             & (x <= rect.right)
             & (y >= rect.top)
             & (y <= rect.bottom);
+        v
+    };
+    // A loop each, so that neither tests per point whether to keep it.
+    match camera_space.is_empty() {
+        true => {
+            for (&p, s) in positions.iter().zip(screen.iter_mut()) {
+                project(p, s);
+            }
+        }
+        false => {
+            for ((&p, s), c) in positions.iter().zip(screen.iter_mut()).zip(camera_space) {
+                *c = project(p, s);
+            }
+        }
     }
     let fit = Fit { in_front, inside };
     if fit.inside && !rows.is_empty() {
@@ -1353,14 +1382,14 @@ mod tests {
         };
         let n = positions.len();
         let (mut screen, mut rows) = (vec![ScreenVertex::default(); n], vec![]);
-        let fit = project_loop(&positions, (&mut screen, &mut rows), &view);
+        let fit = project_loop(&positions, (&mut [], &mut screen, &mut rows), &view);
         assert_eq!(bits(&screen), alone);
         assert!(!fit.inside && !fit.in_front);
         #[cfg(target_arch = "x86_64")]
         {
             let mut wide = |avx512: bool| {
                 let mut screen = vec![ScreenVertex::default(); n];
-                let out = (&mut screen[..], &mut rows[..]);
+                let out = (&mut [][..], &mut screen[..], &mut rows[..]);
                 // SAFETY: the CPU has what each loop needs, as checked below.
                 let fit = unsafe {
                     match avx512 {
