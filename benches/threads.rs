@@ -5,6 +5,11 @@
 //! which bounds what two threads can gain on the stages whose frame is mostly
 //! the clear. Run it with two cores free (benches/sitting.sh pins it to
 //! cores 0 and 1). `RASTERLAB_RECORD=1` writes the medians to docs/bench/.
+//!
+//! Criterion measures one thread, then two, seconds apart; on a shared machine
+//! the host can slow one of them and not the other. So the million-triangle
+//! cases are also drawn in turns ([`alternating`]): one thread, two, and two
+//! frames at once on a thread each, which is as much as two cores here give.
 
 mod common;
 #[path = "common/criterion.rs"]
@@ -15,6 +20,7 @@ use rasterlab::app::figure::{Inputs, Raster};
 use rasterlab::app::parallel::Parallel;
 use rasterlab::scene::{cornell_box, subdivide};
 use rasterlab::{Figure, Frame, Mesh, StageName};
+use std::time::Instant;
 
 /// The same frame drawn by one thread and by two, in bands (`--threads`): every
 /// stage of the box at 2000x2000, pixel-light at 500x500, and a million
@@ -41,9 +47,7 @@ fn threads(c: &mut Criterion, ids: &mut Vec<String>) {
         (500, 500),
         lit,
     ));
-    for stage in [StageName::Depth, StageName::PixelLight] {
-        let figure = Figure::of(stage).with_raster(Raster::Edge);
-        let name = format!("cornell:183 1920x1080, {}", figure.label());
+    for (name, figure) in million_cases() {
         cases.push((name, &million, (1920, 1080), figure));
     }
     cases.push((
@@ -73,6 +77,91 @@ fn threads(c: &mut Criterion, ids: &mut Vec<String>) {
     g.finish();
 }
 
+/// The million-triangle cases: depth and pixel-light, exact rasterizer.
+fn million_cases() -> Vec<(String, Figure)> {
+    [StageName::Depth, StageName::PixelLight]
+        .map(|stage| {
+            let figure = Figure::of(stage).with_raster(Raster::Edge);
+            (format!("cornell:183 1920x1080, {}", figure.label()), figure)
+        })
+        .into()
+}
+
+/// Rounds of frames each way.
+const ROUNDS: usize = 16;
+const FRAMES: usize = 8;
+
+/// Each million-triangle case three ways in turns: drawn by one thread, by two
+/// (in bands), and as two frames at once, each by one thread of its own (what
+/// the host lets two cores do side by side: the ceiling for two threads).
+/// [`ROUNDS`] rounds of [`FRAMES`] frames each way, the ways' order turning
+/// each round, after a round to warm up; each frame timed alone, and the
+/// median frame of each way.
+fn alternating() -> Vec<(String, Vec<f64>)> {
+    let million = subdivide(&cornell_box(), 183);
+    let settings = common::settings((1920, 1080));
+    let inputs = &Inputs::lit(settings.light);
+    let (mesh, camera) = (&million, &settings.camera);
+    let mut rows = Vec::new();
+    for (name, figure) in million_cases() {
+        let new = |threads| Parallel::new(figure, mesh, threads).expect("threads");
+        let mut one = (new(1), Frame::default());
+        let mut two = (new(2), Frame::default());
+        let mut side = [(new(1), Frame::default()), (new(1), Frame::default())];
+        let mut times = [(); 3].map(|_| Vec::with_capacity(2 * ROUNDS * FRAMES));
+        // FRAMES frames, each timed.
+        let draw = |(parallel, frame): &mut (Parallel, Frame), times: &mut Vec<f64>| {
+            for _ in 0..FRAMES {
+                let start = Instant::now();
+                parallel.render(inputs, mesh, camera, frame);
+                times.push(start.elapsed().as_secs_f64() * 1e3);
+            }
+        };
+        for round in 0..=ROUNDS {
+            for way in (0..3).map(|k| (k + round) % 3) {
+                let [t1, t2, t3] = &mut times;
+                match way {
+                    0 => draw(&mut one, t1),
+                    1 => draw(&mut two, t2),
+                    _ => {
+                        let [a, b] = &mut side;
+                        let mut other = Vec::with_capacity(FRAMES);
+                        std::thread::scope(|s| {
+                            s.spawn(|| draw(b, &mut other));
+                            draw(a, t3);
+                        });
+                        t3.extend(other);
+                    }
+                }
+            }
+            if round == 0 {
+                times.iter_mut().for_each(Vec::clear); // warming up
+            }
+        }
+        let [one, two, side] = times.map(|mut t| {
+            t.sort_by(f64::total_cmp);
+            t[t.len() / 2]
+        });
+        eprintln!(
+            "threads, in turns: {name}: 1 thread {one:.2} ms, 2 threads {two:.2} ms ({:.2} times), \
+             two frames at once {side:.2} ms each (the host allows {:.2} times)",
+            one / two,
+            2.0 * one / side
+        );
+        rows.push((name, vec![one, two, side]));
+    }
+    rows
+}
+
 fn main() {
     medians::run_and_record("threads", threads);
+    // Only a whole run of the bench: not `cargo test`'s pass, nor a filter.
+    let whole = std::env::args().skip(1).all(|a| a.starts_with('-'));
+    if std::env::args().any(|a| a == "--bench") && whole {
+        let rows = alternating();
+        if common::recording() {
+            let columns = ["one_thread_ms", "two_threads_ms", "two_frames_at_once_ms"];
+            common::record("threads_alternating", &columns, &rows);
+        }
+    }
 }
