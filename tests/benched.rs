@@ -102,6 +102,8 @@ impl Sitting {
             "stages-native",
             "threads-default",
             "threads-native",
+            "threads_alternating-default",
+            "threads_alternating-native",
             "versus_euc-default",
             "versus_euc-native",
             "check-default",
@@ -307,6 +309,37 @@ impl Sitting {
         )
     }
 
+    /// The million triangles drawn in turns: one thread, two, and two frames
+    /// at once on a thread each.
+    fn in_turns(&self) -> String {
+        let mut out = String::from(
+            "| case | build | 1 thread | 2 threads | ratio | two frames at once, each | two cores allow |\n\
+             |---|---|---|---|---|---|---|\n",
+        );
+        for stage in ["depth", "pixel-light"] {
+            let case = format!("cornell:183 1920x1080, {stage} --raster edge");
+            for build in ["default", "native"] {
+                let v = self
+                    .sheet(&format!("threads_alternating-{build}"))
+                    .get(&case);
+                let (one, two, side) = (v[0], v[1], v[2]);
+                out.push_str(&format!(
+                    "| {case} | {build} | {} | {} | {:.2} | {} | {:.2} |\n",
+                    ms(one),
+                    ms(two),
+                    one / two,
+                    ms(side),
+                    2.0 * one / side
+                ));
+            }
+        }
+        self.sourced(
+            out,
+            &["threads_alternating-default", "threads_alternating-native"],
+            "cargo bench --features bench --bench threads",
+        )
+    }
+
     /// Issue #20's targets against the sitting.
     fn targets(&self) -> String {
         let mut out = String::from("| target | measured | |\n|---|---|---|\n");
@@ -333,14 +366,22 @@ impl Sitting {
             let case = format!("cornell:183 1920x1080, {stage} --raster edge");
             let (d1, d2) = self.threads_of("default", &case);
             let (n1, n2) = self.threads_of("native", &case);
+            let turns = ["default", "native"].map(|b| {
+                let v = self.sheet(&format!("threads_alternating-{b}")).get(&case);
+                (v[0] / v[1], 2.0 * v[0] / v[2])
+            });
             row(
                 format!("the same, {stage}, two threads: at least 1.8 times one, at most 33 ms"),
                 format!(
-                    "{:.2} times, {} ms (default); {:.2} times, {} ms (native)",
+                    "{:.2} times, {} ms (default); {:.2} times, {} ms (native); in turns {:.2} / {:.2} times, where two cores allow {:.2} / {:.2}",
                     d1 / d2,
                     ms(d2),
                     n1 / n2,
-                    ms(n2)
+                    ms(n2),
+                    turns[0].0,
+                    turns[1].0,
+                    turns[0].1,
+                    turns[1].1
                 ),
                 d1 / d2 >= 1.8 && n1 / n2 >= 1.8 && d2 <= 33.0 && n2 <= 33.0,
             );
@@ -396,6 +437,8 @@ impl Sitting {
                 "stages-native",
                 "threads-default",
                 "threads-native",
+                "threads_alternating-default",
+                "threads_alternating-native",
                 "versus_euc-default",
                 "versus_euc-native",
             ],
@@ -530,6 +573,7 @@ impl Sitting {
             "stages" => self.stages(),
             "lines" => self.lines(),
             "threads" => self.threads(),
+            "threads in turns" => self.in_turns(),
             "targets" => self.targets(),
             "options" => self.options(),
             "instructions" => self.instructions(),
@@ -566,6 +610,7 @@ fn the_bench_blocks_are_the_committed_sitting() {
         "docs/performance.md stages",
         "docs/performance.md lines",
         "docs/performance.md threads",
+        "docs/performance.md threads in turns",
         "docs/performance.md targets",
         "docs/performance.md options",
         "docs/performance.md instructions",
