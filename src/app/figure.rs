@@ -10,7 +10,7 @@ use crate::extensions::textured::{
     SmoothTexturedPixelLight, TexturedPixelLight, TexturedVertexLight,
 };
 use crate::pipeline::draw::{Cull, Stats, Vertices};
-use crate::pipeline::raster::{EdgeRaster, Lines, Rasterizer, RowRaster};
+use crate::pipeline::raster::{EdgeRaster, Lines, Rasterizer, RowRaster, SharedPlacing};
 use crate::pipeline::StageName;
 use crate::pipeline::{
     Affine, Camera, Depth, Filled, Frame, Interpolation, Light, Lighting, Mesh, Perspective,
@@ -274,6 +274,10 @@ pub trait Render: Send {
     /// What the stage draws for each triangle.
     fn primitive(&self) -> Primitive;
 
+    /// How the rasterizer's places may be made for every band at once
+    /// ([`Rasterizer::SHARED`]).
+    fn shared_placing(&self) -> Option<SharedPlacing>;
+
     /// Sizes `frame` to the camera's image and draws `mesh` into all of it.
     fn render(&mut self, inputs: &Inputs, mesh: &Mesh, camera: &Camera, frame: &mut Frame) {
         frame.resize(camera.width, camera.height, self.depth_test());
@@ -315,6 +319,10 @@ impl<M: MakeStage, I: Interpolation, R: Rasterizer> Render for Drawn<M, I, R> {
 
     fn primitive(&self) -> Primitive {
         <M::Stage<'static> as Stage>::PRIMITIVE
+    }
+
+    fn shared_placing(&self) -> Option<SharedPlacing> {
+        R::SHARED
     }
 }
 

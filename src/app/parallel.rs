@@ -125,6 +125,7 @@ impl Parallel {
         let pipelines: Vec<_> = (0..threads).map(|_| figure.pipeline_for(model)).collect();
         let mut vertices = Vertices::default();
         vertices.draw_as(pipelines[0].primitive());
+        vertices.place_as(pipelines[0].shared_placing());
         if threads > 1 {
             vertices.group_faces(model.mesh);
         }

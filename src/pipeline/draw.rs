@@ -11,7 +11,7 @@ use super::clip::{
 };
 use super::interpolate::{Interpolation, Nothing, Perspective, Pixel, Varying};
 use super::mesh::Mesh;
-use super::raster::{Bounds, Lines, Placed, Rasterizer, RowRaster, Viewport};
+use super::raster::{Bounds, Lines, Placed, Rasterizer, RowRaster, SharedPlacing, Viewport};
 use super::stage::{Primitive, Stage, Surface};
 use super::target::{pack, Frame, Target};
 use glam::Vec3;
@@ -269,6 +269,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         // Taken out of `self` while the faces are drawn, and put back for the next frame.
         let mut vertices = take(&mut self.vertices);
         vertices.draw_as(S::PRIMITIVE);
+        vertices.place_as(R::SHARED);
         vertices.prepare(mesh, camera);
         self.draw_prepared(stage, mesh, camera, &vertices, target);
         self.vertices = vertices;
@@ -375,7 +376,12 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
             }
             None => runs.push((0..mesh.faces.len(), pass_over)),
         }
-        if in_view {
+        // Placed in the pass that projected them, for every band, if this
+        // rasterizer's places can be; else here, by each band for its faces.
+        let shared = R::SHARED
+            .and_then(|placing| vertices.places(placing))
+            .and_then(R::shared_places);
+        if in_view && shared.is_none() {
             let v = &view.viewport;
             let place = |s: &ScreenVertex<Nothing>| self.raster.place(s.x, s.y, v);
             if grouped.is_some() {
@@ -400,6 +406,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
                 places.extend(screen.iter().map(place));
             }
         }
+        let placed_from = shared.unwrap_or(&places);
         for &(ref run, pass_over) in &runs {
             for (index, face) in mesh.faces[run.clone()].iter().enumerate() {
                 let index = run.start + index;
@@ -431,7 +438,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
                 // mesh's, with the exact one) is passed over before its surface
                 // and vertices are shaded.
                 let placed = match in_view {
-                    true => face.vertices.map(|v| places[v as usize]),
+                    true => face.vertices.map(|v| placed_from[v as usize]),
                     false => Default::default(),
                 };
                 if in_view && self.raster.misses(placed, &view.viewport) {
@@ -847,15 +854,29 @@ impl View {
                 bottom: rect.bottom + g,
             },
             viewport: Viewport {
-                half_width: (camera.width / 2) as i32,
-                half_height: (camera.height / 2) as i32,
-                centre: (camera.width as f32 / 2.0, camera.height as f32 / 2.0),
                 bounds: Bounds {
                     x: 0..target.width.min(camera.width) as i32,
                     y: target.rows.start as i32..target.rows.end.min(camera.height) as i32,
                 },
                 lines,
+                ..Viewport::of(camera)
             },
+        }
+    }
+}
+
+impl Viewport {
+    /// Where `camera`'s vertices land, its whole image the bounds.
+    fn of(camera: &Camera) -> Viewport {
+        Viewport {
+            half_width: (camera.width / 2) as i32,
+            half_height: (camera.height / 2) as i32,
+            centre: (camera.width as f32 / 2.0, camera.height as f32 / 2.0),
+            bounds: Bounds {
+                x: 0..camera.width as i32,
+                y: 0..camera.height as i32,
+            },
+            lines: Lines::default(),
         }
     }
 }
@@ -898,6 +919,11 @@ pub struct Vertices {
     /// The rows each group of faces lies in this frame, from its chunks', when
     /// `rows` is not empty; empty otherwise.
     group_rows: Vec<(f32, f32)>,
+    /// How the frames' vertices are placed for the rasterizer in the pass that
+    /// projects them ([`Vertices::place_as`]), and this frame's places, when
+    /// the mesh is in full view; empty otherwise.
+    placing: Option<SharedPlacing>,
+    places: Vec<(i32, i32)>,
 }
 
 impl Vertices {
@@ -912,6 +938,21 @@ impl Vertices {
     /// camera space are kept for them; points and lines keep them.
     pub fn draw_as(&mut self, primitive: Primitive) {
         self.polygons = primitive == Primitive::Polygons;
+    }
+
+    /// Says how the frames prepared from now on place their vertices for the
+    /// rasterizer ([`Rasterizer::SHARED`]), so that every band reads the same
+    /// places; none to leave it to the bands.
+    pub fn place_as(&mut self, placing: Option<SharedPlacing>) {
+        self.placing = placing;
+    }
+
+    /// This frame's places, made as `placing` says, if they were.
+    pub fn places(&self, placing: SharedPlacing) -> Option<&[(i32, i32)]> {
+        let made = self.placing == Some(placing)
+            && !self.screen.is_empty()
+            && self.places.len() == self.screen.len();
+        made.then_some(&self.places[..])
     }
 
     /// Groups `mesh`'s faces ([`FaceGroups`]), so that each band of the frames
@@ -971,16 +1012,26 @@ impl Vertices {
             true => &mut self.camera_space[..],
             false => &mut [],
         };
+        let placing = self.placing.filter(|_| self.polygons);
+        self.places.resize(placing.map_or(0, |_| n), (0, 0));
+        let placed = placing.map(|p| (p, Viewport::of(camera)));
         let mut fit = project_all(
             &mesh.positions,
-            (camera_space, &mut self.screen, &mut self.rows),
+            (
+                camera_space,
+                &mut self.screen,
+                &mut self.rows,
+                &mut self.places,
+            ),
             &view,
+            placed.as_ref(),
             join,
         );
         fit.in_front |= camera.near.is_none();
         if !(fit.inside && fit.in_front) {
             self.screen.clear();
             self.rows.clear();
+            self.places.clear();
         }
         self.fit = fit;
         if self.keeps_camera_space() && !written {
@@ -1011,8 +1062,9 @@ const PART: usize = 1 << 15;
 /// account), in parts split by `join`.
 fn project_all(
     positions: &[Vec3],
-    (camera_space, screen, rows): Outputs,
+    (camera_space, screen, rows, places): PlacedOutputs,
     view: &(Projection, Option<f32>, Rect),
+    placing: Option<&(SharedPlacing, Viewport)>,
     join: &impl Join,
 ) -> Fit {
     if positions.len() > PART {
@@ -1022,17 +1074,24 @@ fn project_all(
         let (c, d) = camera_space.split_at_mut(half.min(camera_space.len()));
         let (s, t) = screen.split_at_mut(half);
         let (r, u) = rows.split_at_mut((half / CHUNK).min(rows.len()));
+        let (a, b) = places.split_at_mut(half.min(places.len()));
         let (mut first, mut second) = (Fit::default(), Fit::default());
         join.join(
-            || first = project_all(p, (c, s, r), view, join),
-            || second = project_all(q, (d, t, u), view, join),
+            || first = project_all(p, (c, s, r, a), view, placing, join),
+            || second = project_all(q, (d, t, u, b), view, placing, join),
         );
         return Fit {
             in_front: first.in_front && second.in_front,
             inside: first.inside && second.inside,
         };
     }
-    project_part(positions, (camera_space, screen, rows), view)
+    let fit = project_part(positions, (camera_space, &mut *screen, rows), view);
+    // While the part's projections are in the cache; useless unless the whole
+    // mesh is in view, as this part is.
+    if let (Some((placing, viewport)), true) = (placing, fit.inside) {
+        placing.place_all(screen, places, viewport);
+    }
+    fit
 }
 
 /// Where [`project_all`] writes: the points in camera space (or nothing), the
@@ -1041,6 +1100,14 @@ type Outputs<'a> = (
     &'a mut [Vec3],
     &'a mut [ScreenVertex<Nothing>],
     &'a mut [(f32, f32)],
+);
+
+/// [`Outputs`] and each point's place for the rasterizer (or nothing).
+type PlacedOutputs<'a> = (
+    &'a mut [Vec3],
+    &'a mut [ScreenVertex<Nothing>],
+    &'a mut [(f32, f32)],
+    &'a mut [(i32, i32)],
 );
 
 /// [`project_all`]'s work on one part, compiled for the widest vectors the CPU
@@ -1301,6 +1368,22 @@ mod tests {
         assert!(!pipeline.stats().view_tests_skipped);
     }
 
+    /// Small faces in front of [`wall`]'s camera, more vertices than a part
+    /// holds, round the view's axis at `reach` from it, going away.
+    fn small_faces(reach: f32) -> Mesh {
+        let mut mesh = Mesh::default();
+        for k in 0..3 * PART / 2 {
+            let t = k as f32 / PART as f32;
+            let p = Vec3::new(t.sin() * reach, t.cos() * reach, 2.0 + t);
+            mesh.push_triangle(
+                [p, p + Vec3::X * 0.01, p + Vec3::Y * 0.01],
+                -Vec3::Z,
+                Vec3::ONE,
+            );
+        }
+        mesh
+    }
+
     #[test]
     fn vertices_prepared_in_parts_are_those_prepared_in_one() {
         // More vertices than a part holds, in view and then partly behind the
@@ -1313,16 +1396,7 @@ mod tests {
             }
         }
         let (_, camera) = wall();
-        let mut mesh = Mesh::default();
-        for k in 0..3 * PART / 2 {
-            let t = k as f32 / PART as f32;
-            let p = Vec3::new(t.sin() * 0.8, t.cos() * 0.8, 2.0 + t);
-            mesh.push_triangle(
-                [p, p + Vec3::X * 0.01, p + Vec3::Y * 0.01],
-                -Vec3::Z,
-                Vec3::ONE,
-            );
-        }
+        let mut mesh = small_faces(0.8);
         let seen = |mesh: &Mesh, split: bool| {
             let mut v = Vertices::default();
             v.draw_as(Primitive::Polygons);
@@ -1345,6 +1419,41 @@ mod tests {
         assert!(behind.1);
         assert!(behind.2.is_empty() && !behind.3 && !behind.4);
         assert_eq!(seen(&mesh, true), behind);
+    }
+
+    #[test]
+    fn places_made_in_the_projecting_pass_are_the_rasterizers_own() {
+        // More vertices than a part holds, so that the parts are placed apart,
+        // over the whole 100 x 100 image.
+        let (_, camera) = wall();
+        let mesh = small_faces(0.9);
+        let viewport = Viewport::of(&camera);
+        let both = [SharedPlacing::Rows, SharedPlacing::Edge];
+        for placing in both {
+            let mut v = Vertices::default();
+            v.draw_as(Primitive::Polygons);
+            v.place_as(Some(placing));
+            v.prepare_split(&mesh, &camera, &InTurn);
+            let want: Vec<(i32, i32)> = (v.screen.iter())
+                .map(|s| match placing {
+                    SharedPlacing::Rows => RowRaster.place(s.x, s.y, &viewport),
+                    SharedPlacing::Edge => EdgeRaster.place(s.x, s.y, &viewport),
+                })
+                .collect();
+            assert_eq!(want.len(), mesh.positions.len());
+            assert_eq!(v.places(placing), Some(&want[..]));
+            let other = both[(placing == SharedPlacing::Rows) as usize];
+            assert_eq!(v.places(other), None, "made as {placing:?}");
+            // None for lines, nor for a mesh not wholly in view.
+            v.draw_as(Primitive::Lines);
+            v.prepare(&mesh, &camera);
+            assert_eq!(v.places(placing), None);
+            v.draw_as(Primitive::Polygons);
+            let mut behind = mesh.clone();
+            behind.positions[0].z = -1.0;
+            v.prepare(&behind, &camera);
+            assert_eq!(v.places(placing), None);
+        }
     }
 
     #[test]

@@ -14,7 +14,7 @@
 //!   handout's `Interpolate`.
 
 use super::rows::draw_line_by;
-use super::{Placed, Rasterizer, Viewport};
+use super::{Placed, Rasterizer, SharedPlacing, Viewport};
 use crate::pipeline::clip::ScreenVertex;
 use crate::pipeline::interpolate::{Pixel, Varying};
 
@@ -310,6 +310,12 @@ impl Rasterizer for EdgeRaster {
             round_to_i32(x * SUBPIXEL as f32),
             round_to_i32(y * SUBPIXEL as f32),
         )
+    }
+
+    const SHARED: Option<SharedPlacing> = Some(SharedPlacing::Edge);
+
+    fn shared_places(places: &[(i32, i32)]) -> Option<&[(i32, i32)]> {
+        Some(places)
     }
 
     /// No pixel centre in the triangle's bounding box (the bounds aside: a

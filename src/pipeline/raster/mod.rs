@@ -16,7 +16,7 @@ pub use rows::RowRaster;
 pub use rows::{LineWalk, Lines};
 
 use super::clip::ScreenVertex;
-use super::interpolate::{Pixel, Varying};
+use super::interpolate::{Nothing, Pixel, Varying};
 use std::ops::Range;
 
 /// The pixels a primitive may write: `x` in `0..width` and `y` in the target's
@@ -106,6 +106,17 @@ pub trait Rasterizer: Copy + Default + Send + 'static {
     /// the pipeline can pass it over before shading its vertices.
     fn misses(&self, places: [Self::Place; 3], viewport: &Viewport) -> bool;
 
+    /// How the pipeline may place every vertex of a mesh in full view in the
+    /// pass that projects them, once per frame for all bands: the built-in
+    /// rasterizers' places are two `i32`s. None: each band places its own.
+    const SHARED: Option<SharedPlacing> = None;
+
+    /// Places made so ([`Rasterizer::SHARED`]) as this rasterizer's.
+    fn shared_places(places: &[(i32, i32)]) -> Option<&[Self::Place]> {
+        let _ = places;
+        None
+    }
+
     /// [`Rasterizer::polygon`] for a triangle whose corners are placed already.
     fn triangle<V: Varying>(
         &self,
@@ -114,6 +125,38 @@ pub trait Rasterizer: Copy + Default + Send + 'static {
         viewport: &Viewport,
         plot: impl FnMut(Pixel<V>),
     );
+}
+
+/// A built-in rasterizer's [`Rasterizer::place`], named so that the pass that
+/// projects a frame's vertices can place them too.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SharedPlacing {
+    Rows,
+    Edge,
+}
+
+impl SharedPlacing {
+    /// Every point of `screen` placed into `places`.
+    pub fn place_all(
+        self,
+        screen: &[ScreenVertex<Nothing>],
+        places: &mut [(i32, i32)],
+        viewport: &Viewport,
+    ) {
+        // A loop each, so that the compiler takes several points at once.
+        match self {
+            SharedPlacing::Rows => {
+                for (p, s) in places.iter_mut().zip(screen) {
+                    *p = RowRaster.place(s.x, s.y, viewport);
+                }
+            }
+            SharedPlacing::Edge => {
+                for (p, s) in places.iter_mut().zip(screen) {
+                    *p = EdgeRaster.place(s.x, s.y, viewport);
+                }
+            }
+        }
+    }
 }
 
 /// A corner as a rasterizer placed it ([`Rasterizer::place`]), with its 1/z and

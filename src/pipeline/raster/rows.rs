@@ -5,7 +5,7 @@
 //! in `super::bresenham`), or in `rasterlab check` a student's.
 
 use super::bresenham::bresenham;
-use super::{Bounds, Placed, Rasterizer, Viewport};
+use super::{Bounds, Placed, Rasterizer, SharedPlacing, Viewport};
 use crate::pipeline::clip::ScreenVertex;
 use crate::pipeline::interpolate::{
     line_pixels, Pixel, RunningSum, Steps, Varying, RUNNING_SUM_LIMIT,
@@ -79,6 +79,12 @@ impl Rasterizer for RowRaster {
     }
 
     type Place = (i32, i32);
+
+    const SHARED: Option<SharedPlacing> = Some(SharedPlacing::Rows);
+
+    fn shared_places(places: &[(i32, i32)]) -> Option<&[(i32, i32)]> {
+        Some(places)
+    }
 
     /// Never: `ComputePolygonRows` gives every triangle the rows its corners span.
     fn misses(&self, _: [(i32, i32); 3], _: &Viewport) -> bool {
