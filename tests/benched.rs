@@ -276,6 +276,15 @@ impl Sitting {
         )
     }
 
+    /// One thread's median frame, two threads', and two frames' at once
+    /// (a thread each), drawn in turns.
+    fn in_turns_of(&self, build: &str, case: &str) -> (f64, f64, f64) {
+        let v = self
+            .sheet(&format!("threads_alternating-{build}"))
+            .get(case);
+        (v[0], v[1], v[2])
+    }
+
     fn threads(&self) -> String {
         let mut out = String::from(
             "| case | 1 thread, default | 2 threads, default | ratio | 1 thread, native | 2 threads, native | ratio |\n\
@@ -319,10 +328,7 @@ impl Sitting {
         for stage in ["depth", "pixel-light"] {
             let case = format!("cornell:183 1920x1080, {stage} --raster edge");
             for build in ["default", "native"] {
-                let v = self
-                    .sheet(&format!("threads_alternating-{build}"))
-                    .get(&case);
-                let (one, two, side) = (v[0], v[1], v[2]);
+                let (one, two, side) = self.in_turns_of(build, &case);
                 out.push_str(&format!(
                     "| {case} | {build} | {} | {} | {:.2} | {} | {:.2} |\n",
                     ms(one),
@@ -367,8 +373,8 @@ impl Sitting {
             let (d1, d2) = self.threads_of("default", &case);
             let (n1, n2) = self.threads_of("native", &case);
             let turns = ["default", "native"].map(|b| {
-                let v = self.sheet(&format!("threads_alternating-{b}")).get(&case);
-                (v[0] / v[1], 2.0 * v[0] / v[2])
+                let (one, two, side) = self.in_turns_of(b, &case);
+                (one / two, 2.0 * one / side)
             });
             row(
                 format!("the same, {stage}, two threads: at least 1.8 times one, at most 33 ms"),

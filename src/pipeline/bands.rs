@@ -33,8 +33,6 @@ pub struct FaceGroups {
     chunks: Vec<u32>,
     /// Where each group's chunks start in `chunks`, and where the last ends.
     starts: Vec<u32>,
-    /// Whether some group names too many chunks.
-    scattered: bool,
     faces: usize,
     vertices: usize,
 }
@@ -60,8 +58,6 @@ impl FaceGroups {
             named.dedup();
             if named.len() <= MOST_CHUNKS {
                 groups.chunks.extend(&named);
-            } else {
-                groups.scattered = true;
             }
             groups.starts.push(groups.chunks.len() as u32);
         }
@@ -113,8 +109,7 @@ impl FaceGroups {
     /// The faces of a band whose rows (from the screen's centre) are `bounds`,
     /// of a mesh with `faces` faces whose groups lie in `rows` this frame
     /// ([`FaceGroups::group_rows`]): as runs of faces in the mesh's order, each
-    /// with whether its faces may lie beyond the band (to be tested one by one),
-    /// and the chunks they name (every chunk, if the groups are scattered).
+    /// with whether its faces may lie beyond the band (to be tested one by one).
     /// Returns how many faces it passed over, wholly beyond the band.
     pub fn select(
         &self,
@@ -122,12 +117,9 @@ impl FaceGroups {
         rows: &[(f32, f32)],
         (top, bottom): (f32, f32),
         runs: &mut Vec<(Range<usize>, bool)>,
-        named: &mut Vec<bool>,
     ) -> u64 {
         runs.clear();
         runs.reserve(self.count()); // in the first frame: no later one allocates
-        named.clear();
-        named.resize(self.vertices.div_ceil(CHUNK), self.scattered);
         let mut passed = 0;
         let groups = faces.div_ceil(GROUP).min(rows.len());
         for (g, &(low, high)) in rows[..groups].iter().enumerate() {
@@ -137,12 +129,6 @@ impl FaceGroups {
                 continue;
             }
             let beyond = low < top || high > bottom;
-            if !self.scattered {
-                let (from, to) = (self.starts[g] as usize, self.starts[g + 1] as usize);
-                for &c in &self.chunks[from..to] {
-                    named[c as usize] = true;
-                }
-            }
             match runs.last_mut() {
                 Some((run, b)) if run.end == faces.start && *b == beyond => run.end = faces.end,
                 _ => runs.push((faces, beyond)),
@@ -151,10 +137,11 @@ impl FaceGroups {
         passed
     }
 
-    /// Whether some group names too many chunks for its rows to be bounded: a
-    /// band then places every vertex.
-    pub fn scattered(&self) -> bool {
-        self.scattered
+    /// Whether some group names too many chunks for its rows to be bounded (it
+    /// keeps none).
+    #[cfg(test)]
+    fn scattered(&self) -> bool {
+        self.starts.windows(2).any(|s| s[0] == s[1])
     }
 }
 
@@ -299,10 +286,10 @@ mod tests {
             let groups = FaceGroups::of(&mesh);
             let mut rows = vec![(0.0, 0.0); groups.count()];
             groups.group_rows(0, &rows_of(&mesh), &mut rows);
-            let (mut runs, mut named) = (Vec::new(), Vec::new());
+            let mut runs = Vec::new();
             for (top, bottom) in [(20.5, 40.5), (-10.0, 0.5), (89.5, 200.0), (45.0, 45.0)] {
                 let faces = mesh.faces.len();
-                let passed = groups.select(faces, &rows, (top, bottom), &mut runs, &mut named);
+                let passed = groups.select(faces, &rows, (top, bottom), &mut runs);
                 let mut chosen = vec![None; faces];
                 for (run, beyond) in &runs {
                     for k in run.clone() {
@@ -318,13 +305,8 @@ mod tests {
                     match chosen {
                         // Passed over: wholly beyond the band.
                         None => assert!(beyond, "{ys:?} in {top} to {bottom}"),
-                        // Not tested: wholly within it, its vertices placed.
-                        Some(false) => {
-                            assert!(within, "{ys:?} in {top} to {bottom}");
-                            for v in face.vertices {
-                                assert!(named[v as usize / CHUNK]);
-                            }
-                        }
+                        // Not tested: wholly within it.
+                        Some(false) => assert!(within, "{ys:?} in {top} to {bottom}"),
                         Some(true) => {}
                     }
                 }

@@ -48,10 +48,8 @@ pub struct Pipeline<V: Varying, I: Interpolation = Perspective, R: Rasterizer = 
     /// mesh is in full view.
     places: Vec<R::Place>,
     /// The faces a band of a frame in full view draws, as runs of face indices
-    /// (each with whether its faces may lie beyond the band), and the chunks of
-    /// vertices they name ([`FaceGroups`]).
+    /// (each with whether its faces may lie beyond the band: [`FaceGroups`]).
     runs: Vec<(Range<usize>, bool)>,
-    named: Vec<bool>,
     visible: Visible<I::Kept<V>>,
     stats: Stats,
     interpolation: PhantomData<I>,
@@ -217,7 +215,6 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Default for Pipeline<V, I, R> 
             vertices: Vertices::default(),
             places: Vec::new(),
             runs: Vec::new(),
-            named: Vec::new(),
             visible: Visible {
                 index: Vec::new(),
                 kept: Vec::new(),
@@ -368,43 +365,22 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         let grouped = vertices
             .grouped()
             .filter(|_| pass_over && self.cull == Cull::None);
-        let named = &mut self.named;
         match grouped {
             Some((groups, rows)) => {
                 let bounds = (top, bottom);
-                self.stats.drawn += groups.select(mesh.faces.len(), rows, bounds, &mut runs, named);
+                self.stats.drawn += groups.select(mesh.faces.len(), rows, bounds, &mut runs);
             }
             None => runs.push((0..mesh.faces.len(), pass_over)),
         }
         // Placed in the pass that projected them, for every band, if this
-        // rasterizer's places can be; else here, by each band for its faces.
+        // rasterizer's places can be (the built-in ones'); else here.
         let shared = R::SHARED
             .and_then(|placing| vertices.places(placing))
             .and_then(R::shared_places);
         if in_view && shared.is_none() {
             let v = &view.viewport;
-            let place = |s: &ScreenVertex<Nothing>| self.raster.place(s.x, s.y, v);
-            if grouped.is_some() {
-                // Only the chunks this band's faces name (the others keep
-                // whatever they held, unread), a run of them in one loop: long
-                // enough for the compiler's several-at-a-time loop, which a
-                // chunk alone runs one vertex at a time.
-                places.resize(screen.len(), R::Place::default());
-                let mut first = 0;
-                for run in named.chunk_by(|a, b| a == b) {
-                    let chunks = first..first + run.len();
-                    first = chunks.end;
-                    if run[0] {
-                        let run = chunks.start * CHUNK..(chunks.end * CHUNK).min(screen.len());
-                        for (p, s) in places[run.clone()].iter_mut().zip(&screen[run]) {
-                            *p = place(s);
-                        }
-                    }
-                }
-            } else {
-                places.clear();
-                places.extend(screen.iter().map(place));
-            }
+            places.clear();
+            places.extend(screen.iter().map(|s| self.raster.place(s.x, s.y, v)));
         }
         let placed_from = shared.unwrap_or(&places);
         for &(ref run, pass_over) in &runs {

@@ -145,17 +145,20 @@ impl SharedPlacing {
     ) {
         // A loop each, so that the compiler takes several points at once.
         match self {
-            SharedPlacing::Rows => {
-                for (p, s) in places.iter_mut().zip(screen) {
-                    *p = RowRaster.place(s.x, s.y, viewport);
-                }
-            }
-            SharedPlacing::Edge => {
-                for (p, s) in places.iter_mut().zip(screen) {
-                    *p = EdgeRaster.place(s.x, s.y, viewport);
-                }
-            }
+            SharedPlacing::Rows => place_each(RowRaster, screen, places, viewport),
+            SharedPlacing::Edge => place_each(EdgeRaster, screen, places, viewport),
         }
+    }
+}
+
+fn place_each<R: Rasterizer>(
+    raster: R,
+    screen: &[ScreenVertex<Nothing>],
+    places: &mut [R::Place],
+    viewport: &Viewport,
+) {
+    for (p, s) in places.iter_mut().zip(screen) {
+        *p = raster.place(s.x, s.y, viewport);
     }
 }
 
