@@ -9,7 +9,7 @@ use crate::extensions::texture::{Filter, Maps, Model, NO_MAPS};
 use crate::extensions::textured::{
     SmoothTexturedPixelLight, TexturedPixelLight, TexturedVertexLight,
 };
-use crate::pipeline::draw::{Cull, Stats, Vertices};
+use crate::pipeline::draw::{Cull, Handover, Stats, Vertices};
 use crate::pipeline::raster::{EdgeRaster, Lines, Rasterizer, RowRaster, SharedPlacing};
 use crate::pipeline::StageName;
 use crate::pipeline::{
@@ -248,22 +248,36 @@ fn with_lit_types<I: Interpolation, R: Rasterizer, W: WithStage, L: MakeLight>(
     }
 }
 
+/// What every band of a frame reads: the inputs its stage is made from, the
+/// mesh, the camera, and the mesh's vertices prepared once for all bands
+/// ([`Vertices::prepare`]).
+#[derive(Clone, Copy)]
+pub struct Prepared<'a> {
+    pub inputs: &'a Inputs<'a>,
+    pub mesh: &'a Mesh,
+    pub camera: &'a Camera,
+    pub vertices: &'a Vertices,
+}
+
 /// A pipeline whose stage was chosen at run time, behind one interface.
 pub trait Render: Send {
     /// [`Pipeline::draw`] with the stage made from `inputs`: draws `mesh` into
     /// `target`, a band of the camera's image.
     fn draw(&mut self, inputs: &Inputs, mesh: &Mesh, camera: &Camera, target: &mut Target);
 
-    /// [`Render::draw`] with the frame's vertices prepared once for all bands
-    /// ([`Pipeline::draw_prepared`]).
-    fn draw_prepared(
+    /// [`Render::draw`] with the frame's vertices prepared once for all bands,
+    /// beside another thread, which may take some of the band's rows
+    /// ([`Pipeline::draw_sharing`]).
+    fn draw_sharing<'t>(
         &mut self,
-        inputs: &Inputs,
-        mesh: &Mesh,
-        camera: &Camera,
-        vertices: &Vertices,
-        target: &mut Target,
+        frame: Prepared,
+        target: &mut Target<'t>,
+        handover: Option<&dyn Handover<'t>>,
     );
+
+    /// The faces from face `from` on, drawn into rows another thread handed
+    /// over ([`Pipeline::draw_given`]).
+    fn draw_given(&mut self, frame: Prepared, target: &mut Target, from: usize);
 
     /// What the last frame did.
     fn stats(&self) -> Stats;
@@ -296,17 +310,23 @@ impl<M: MakeStage, I: Interpolation, R: Rasterizer> Render for Drawn<M, I, R> {
         self.pipeline.draw(&M::make(inputs), mesh, camera, target)
     }
 
-    fn draw_prepared(
+    fn draw_sharing<'t>(
         &mut self,
-        inputs: &Inputs,
-        mesh: &Mesh,
-        camera: &Camera,
-        vertices: &Vertices,
-        target: &mut Target,
+        frame: Prepared,
+        target: &mut Target<'t>,
+        handover: Option<&dyn Handover<'t>>,
     ) {
-        let stage = M::make(inputs);
+        let Prepared { mesh, camera, .. } = frame;
+        let stage = M::make(frame.inputs);
         self.pipeline
-            .draw_prepared(&stage, mesh, camera, vertices, target)
+            .draw_sharing(&stage, mesh, camera, frame.vertices, target, handover)
+    }
+
+    fn draw_given(&mut self, frame: Prepared, target: &mut Target, from: usize) {
+        let Prepared { mesh, camera, .. } = frame;
+        let stage = M::make(frame.inputs);
+        self.pipeline
+            .draw_given(&stage, mesh, camera, frame.vertices, target, from)
     }
 
     fn stats(&self) -> Stats {

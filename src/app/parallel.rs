@@ -1,7 +1,10 @@
 //! Drawing on several cores: the image split into bands of rows, one pipeline
 //! per band, each thread owning its pixels (no locks, no atomics per pixel). A
 //! band draws exactly its part of the whole image, so the result is the same, byte
-//! for byte, for any number of threads.
+//! for byte, for any number of threads. The bands are cut where the last frames'
+//! times say the work splits evenly; when one still holds more (the machine
+//! slowed its thread), the thread beside it takes its lower rows part of the way
+//! through its faces ([`Exchange`]), and the two end together.
 //!
 //! The threads beside the caller are [`Helpers`]: each waits for the second half
 //! of a [`Join`], spinning a little before it sleeps, so handing a frame over
@@ -12,19 +15,19 @@
 //! is never slower than the two halves in turn by more than a few atomic
 //! operations.
 
-use crate::app::figure::{Figure, Inputs, Render};
+use crate::app::figure::{Figure, Inputs, Prepared, Render};
 use crate::extensions::normal_map::TangentFrame;
 use crate::extensions::texture::Model;
 use crate::pipeline::bands::CHUNK;
 use crate::pipeline::clip::ScreenVertex;
-use crate::pipeline::draw::{Join, Stats, Vertices};
+use crate::pipeline::draw::{Handover, Join, Stats, Vertices};
 use crate::pipeline::{Camera, Frame, Mesh, Target};
 use std::any::Any;
 use std::cell::UnsafeCell;
 use std::ops::Range;
 use std::panic::{catch_unwind, resume_unwind, AssertUnwindSafe};
-use std::sync::atomic::{AtomicU8, Ordering};
-use std::sync::Arc;
+use std::sync::atomic::{AtomicBool, AtomicU8, Ordering};
+use std::sync::{Arc, Condvar, Mutex, MutexGuard};
 use std::thread::{JoinHandle, Thread};
 use std::time::{Duration, Instant};
 
@@ -48,39 +51,38 @@ pub struct Parallel {
     times: Vec<f64>,
 }
 
-/// What every band of a frame reads.
-#[derive(Clone, Copy)]
-struct Shared<'a> {
-    inputs: &'a Inputs<'a>,
-    mesh: &'a Mesh,
-    camera: &'a Camera,
-    vertices: &'a Vertices,
-}
-
 /// Draws `target` with `pipelines`, the band of pipeline `i` ending before row
 /// `ends[i]` (the last at the target's bottom): the two halves of the pipelines on
 /// the two sides of a [`Join`], whose jobs live on the stack, so a frame
-/// allocates nothing for its threads. Every pipeline draws, an empty band too,
-/// so that each one's counts are this frame's.
+/// allocates nothing for its threads. Two bands side by side share their
+/// rows ([`Exchange`]). Every pipeline draws, an empty band too, so that each
+/// one's counts are this frame's.
 fn draw_bands(
     pipelines: &mut [Box<dyn Render>],
     (ends, times): (&[u32], &mut [f64]),
     target: Target,
-    shared: Shared,
+    prepared: Prepared,
     join: &impl Join,
 ) {
-    let Shared {
-        inputs,
-        mesh,
-        camera,
-        vertices,
-    } = shared;
     match pipelines {
         [] => {}
         [only] => {
             let (mut target, start) = (target, Instant::now());
-            only.draw_prepared(inputs, mesh, camera, vertices, &mut target);
+            only.draw_sharing(prepared, &mut target, None);
             times[0] = start.elapsed().as_secs_f64();
+        }
+        [first, second] => {
+            let (top, bottom) = target.split_at_row(ends[0]);
+            let exchange = Exchange::new();
+            let (first_time, second_time) = times.split_at_mut(1);
+            join.join(
+                || exchange.draw(first, 0, top, prepared, &mut first_time[0]),
+                || exchange.draw(second, 1, bottom, prepared, &mut second_time[0]),
+            );
+            // Rows handed over count for the band they were cut from.
+            let taken = exchange.taken();
+            times[0] += taken[0];
+            times[1] += taken[1];
         }
         _ => {
             let half = pipelines.len() / 2;
@@ -89,10 +91,127 @@ fn draw_bands(
             let (ends, later) = ends.split_at(half);
             let (times, later_times) = times.split_at_mut(half);
             join.join(
-                || draw_bands(first, (ends, times), top, shared, join),
-                || draw_bands(second, (later, later_times), bottom, shared, join),
+                || draw_bands(first, (ends, times), top, prepared, join),
+                || draw_bands(second, (later, later_times), bottom, prepared, join),
             );
         }
+    }
+}
+
+/// Two bands drawn side by side: the thread that ends its own first takes
+/// the lower rows of the other's, again and again while the other has enough
+/// left ([`Handover`]), so that the two end together.
+struct Exchange<'t> {
+    state: Mutex<Handovers<'t>>,
+    changed: Condvar,
+    /// A thread waits for rows.
+    wanted: AtomicBool,
+}
+
+struct Handovers<'t> {
+    /// How many bands are still drawn by their own threads (only they hand
+    /// rows over).
+    drawing: usize,
+    /// Rows handed over and not yet taken: the rows, the first face not drawn
+    /// in them, and the band they were cut from.
+    offer: Option<(Target<'t>, usize, usize)>,
+    /// How long each band's rows drawn by the other thread took.
+    taken: [f64; 2],
+}
+
+/// One side of an [`Exchange`]: the band it draws.
+struct Side<'e, 't> {
+    exchange: &'e Exchange<'t>,
+    band: usize,
+}
+
+impl<'t> Exchange<'t> {
+    fn new() -> Self {
+        Exchange {
+            state: Mutex::new(Handovers {
+                drawing: 2,
+                offer: None,
+                taken: [0.0; 2],
+            }),
+            changed: Condvar::new(),
+            wanted: AtomicBool::new(false),
+        }
+    }
+
+    /// Nothing is drawn while the lock is held, so no panic can poison it.
+    fn lock(&self) -> MutexGuard<'_, Handovers<'t>> {
+        self.state.lock().unwrap_or_else(|e| e.into_inner())
+    }
+
+    /// Band `band` drawn with `pipeline` into `target` (its time in `time`),
+    /// handing rows over while the other thread wants them; then rows the other
+    /// band hands over, until it has ended.
+    fn draw(
+        &self,
+        pipeline: &mut Box<dyn Render>,
+        band: usize,
+        mut target: Target<'t>,
+        prepared: Prepared,
+        time: &mut f64,
+    ) {
+        let start = Instant::now();
+        {
+            let _drawing = Drawing(self);
+            let side = Side {
+                exchange: self,
+                band,
+            };
+            pipeline.draw_sharing(prepared, &mut target, Some(&side));
+        }
+        *time = start.elapsed().as_secs_f64();
+        while let Some((mut rows, from, of)) = self.wait_for_rows() {
+            let start = Instant::now();
+            pipeline.draw_given(prepared, &mut rows, from);
+            self.lock().taken[of] += start.elapsed().as_secs_f64();
+        }
+    }
+
+    /// Rows the other thread hands over, or none once it has ended its band.
+    fn wait_for_rows(&self) -> Option<(Target<'t>, usize, usize)> {
+        let mut state = self.lock();
+        loop {
+            if let Some(offer) = state.offer.take() {
+                return Some(offer);
+            }
+            if state.drawing == 0 {
+                return None;
+            }
+            self.wanted.store(true, Ordering::Relaxed);
+            state = self.changed.wait(state).unwrap_or_else(|e| e.into_inner());
+        }
+    }
+
+    fn taken(&self) -> [f64; 2] {
+        self.lock().taken
+    }
+}
+
+impl<'t> Handover<'t> for Side<'_, 't> {
+    fn wanted(&self) -> bool {
+        self.exchange.wanted.load(Ordering::Relaxed)
+    }
+
+    fn hand_over(&self, rows: Target<'t>, from: usize) {
+        let mut state = self.exchange.lock();
+        state.offer = Some((rows, from, self.band));
+        self.exchange.wanted.store(false, Ordering::Relaxed);
+        self.exchange.changed.notify_all();
+    }
+}
+
+/// A band drawn by its own thread until this is dropped, a panic's unwinding
+/// too, so that the other thread never waits for rows that cannot come.
+struct Drawing<'e, 't>(&'e Exchange<'t>);
+
+impl Drop for Drawing<'_, '_> {
+    fn drop(&mut self) {
+        self.0.lock().drawing -= 1;
+        self.0.changed.notify_all();
     }
 }
 
@@ -179,14 +298,14 @@ impl Parallel {
         };
         let depth = self.pipelines[0].depth_test();
         frame.resize(camera.width, camera.height, depth);
-        let shared = Shared {
+        let prepared = Prepared {
             inputs,
             mesh,
             camera,
             vertices: &self.vertices,
         };
         let bands = (&self.ends[..], &mut self.times[..]);
-        draw_bands(&mut self.pipelines, bands, frame.target(), shared, join);
+        draw_bands(&mut self.pipelines, bands, frame.target(), prepared, join);
     }
 
     /// Ends the bands where each holds about the same work: a row's pixels, and

@@ -145,6 +145,61 @@ impl FaceGroups {
     }
 }
 
+/// Where a band of image rows `band` that still has the faces of `runs` from
+/// face `from` on to draw is cut in two halves of them, as their groups' rows
+/// this frame say (`rows`, from the screen's centre, which is at row
+/// `centre`): the row the lower half starts at, and how many faces are left
+/// in the band.
+/// Each group counts at its middle row, in one of [`HALVING_PARTS`] parts of
+/// the band; a group without bounded rows counts in the middle.
+pub fn halfway_row(
+    runs: &[(Range<usize>, bool)],
+    from: usize,
+    rows: &[(f32, f32)],
+    band: Range<i32>,
+    centre: f32,
+) -> (i32, usize) {
+    let mut parts = [0usize; HALVING_PARTS];
+    let length = band.len().max(1) as f32;
+    let part = |mid: f32| {
+        let at = (mid + centre - band.start as f32) / length * HALVING_PARTS as f32;
+        match at.is_finite() {
+            true => (at.max(0.0) as usize).min(HALVING_PARTS - 1),
+            false => HALVING_PARTS / 2,
+        }
+    };
+    for run in runs {
+        let faces = run.0.start.max(from)..run.0.end;
+        let mut at = faces.start;
+        while at < faces.end {
+            let group = at / GROUP;
+            let end = ((group + 1) * GROUP).min(faces.end);
+            let (low, high) = rows.get(group).copied().unwrap_or((0.0, 0.0));
+            // A group wholly beyond the band is passed over, not drawn.
+            let beyond = high + centre < band.start as f32 || low + centre > band.end as f32;
+            if !beyond {
+                parts[part((low + high) / 2.0)] += end - at;
+            }
+            at = end;
+        }
+    }
+    let left: usize = parts.iter().sum();
+    let mut done = 0;
+    for (k, &faces) in parts.iter().enumerate() {
+        if 2 * (done + faces) >= left && faces > 0 {
+            // Within the part, where its faces, spread evenly, reach half.
+            let within = (left as f32 / 2.0 - done as f32) / faces as f32;
+            let row = (k as f32 + within.clamp(0.0, 1.0)) * length / HALVING_PARTS as f32;
+            return (band.start + row.round() as i32, left);
+        }
+        done += faces;
+    }
+    (band.start + band.len() as i32 / 2, left)
+}
+
+/// In how many parts [`halfway_row`] weighs a band's rows.
+pub const HALVING_PARTS: usize = 32;
+
 /// The rows (from the screen's centre) that the vertices of each chunk of
 /// `screen` lie in: the lowest and highest `y`.
 pub fn chunk_rows(screen: &[ScreenVertex<Nothing>], rows: &mut [(f32, f32)]) {

@@ -3,7 +3,7 @@
 //! every pixel goes through the depth test (for stages that have one) and the
 //! stage's pixel shader into the render target.
 
-use super::bands::{chunk_rows, FaceGroups, CHUNK, GROUP};
+use super::bands::{chunk_rows, halfway_row, FaceGroups, CHUNK, GROUP};
 use super::camera::{Camera, Projection};
 use super::clip::{
     clip_near, clip_rect, clip_segment_near, clip_segment_rect, CameraVertex, Polygon, Rect,
@@ -53,6 +53,44 @@ pub struct Pipeline<V: Varying, I: Interpolation = Perspective, R: Rasterizer = 
     visible: Visible<I::Kept<V>>,
     stats: Stats,
     interpolation: PhantomData<I>,
+}
+
+/// Another thread drawing a band of the same frame, which may take some of
+/// this band's rows once it has none of its own left
+/// ([`Pipeline::draw_sharing`]): the threads then end together when one band
+/// holds more work than its share (its rows were weighed wrong, or the machine
+/// slowed its thread).
+pub trait Handover<'t>: Sync {
+    /// Whether the other thread waits for rows.
+    fn wanted(&self) -> bool;
+
+    /// Gives the other thread `rows`, with every face before face `from`
+    /// drawn in them: it draws the faces from `from` on
+    /// ([`Pipeline::draw_given`]).
+    fn hand_over(&self, rows: Target<'t>, from: usize);
+}
+
+/// How many faces a band draws between two looks at whether another thread
+/// waits for rows: a few microseconds of a million-triangle frame.
+const HANDOVER_EVERY: usize = 512;
+
+/// The fewest faces left for a band to hand over half of them: fewer are
+/// drawn sooner than the other thread sets up to draw its half.
+const LEAST_HANDED: usize = 1 << 15;
+
+/// The fewest rows a hand-over leaves on either side.
+const LEAST_ROWS: i32 = 4;
+
+/// The faces a pipeline draws: those of `mesh` from face `from` on, as
+/// `camera` sees them, with the frame's `vertices`, beside the thread
+/// `handover` names, if any.
+#[derive(Clone, Copy)]
+struct Faces<'a, 't> {
+    mesh: &'a Mesh,
+    camera: &'a Camera,
+    vertices: &'a Vertices,
+    from: usize,
+    handover: Option<&'a dyn Handover<'t>>,
 }
 
 /// Faces left out by the way they face the camera: a face is back-facing when its
@@ -283,6 +321,76 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         vertices: &Vertices,
         target: &mut Target,
     ) {
+        self.draw_sharing(stage, mesh, camera, vertices, target, None)
+    }
+
+    /// [`Pipeline::draw_prepared`] beside another thread, which may take the
+    /// lower rows of the band once it has none of its own left
+    /// ([`Handover`]): the faces left are then drawn into fewer rows here.
+    pub fn draw_sharing<'t, S: Stage<Varying = V>>(
+        &mut self,
+        stage: &S,
+        mesh: &Mesh,
+        camera: &Camera,
+        vertices: &Vertices,
+        target: &mut Target<'t>,
+        handover: Option<&dyn Handover<'t>>,
+    ) {
+        target.clear();
+        let fit = vertices.fit;
+        self.stats = Stats {
+            triangles: mesh.faces.len() as u64,
+            near_plane_skipped: fit.in_front && camera.near.is_some(),
+            view_tests_skipped: fit.inside,
+            ..Stats::default()
+        };
+        let faces = Faces {
+            mesh,
+            camera,
+            vertices,
+            from: 0,
+            handover,
+        };
+        self.draw_from(stage, faces, target);
+    }
+
+    /// Draws the faces from face `from` on into `target`, rows another thread
+    /// handed over ([`Handover::hand_over`]) with every earlier face drawn in
+    /// them. The counts of triangles stay those of this pipeline's last frame;
+    /// the pixels are added to them.
+    pub fn draw_given<S: Stage<Varying = V>>(
+        &mut self,
+        stage: &S,
+        mesh: &Mesh,
+        camera: &Camera,
+        vertices: &Vertices,
+        target: &mut Target,
+        from: usize,
+    ) {
+        let frame = take(&mut self.stats);
+        let faces = Faces {
+            mesh,
+            camera,
+            vertices,
+            from,
+            handover: None,
+        };
+        self.draw_from(stage, faces, target);
+        self.stats = Stats {
+            pixels_written: frame.pixels_written + self.stats.pixels_written,
+            depth_rejected: frame.depth_rejected + self.stats.depth_rejected,
+            ..frame
+        };
+    }
+
+    /// `faces` drawn into `target` as it is.
+    fn draw_from<'t, S: Stage<Varying = V>>(
+        &mut self,
+        stage: &S,
+        faces: Faces<'_, 't>,
+        target: &mut Target<'t>,
+    ) {
+        let Faces { mesh, vertices, .. } = faces;
         assert!(
             !S::DEPTH_TEST || target.depth.is_some(),
             "a stage with a depth test needs a depth buffer"
@@ -296,18 +404,6 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
             S::PRIMITIVE == Primitive::Polygons || vertices.keeps_camera_space(),
             "vertices prepared for filled faces"
         );
-        target.clear();
-        let mut view = View::new(camera, target, self.lines);
-        let fit = vertices.fit;
-        self.stats = Stats {
-            triangles: mesh.faces.len() as u64,
-            near_plane_skipped: fit.in_front && camera.near.is_some(),
-            view_tests_skipped: fit.inside,
-            ..Stats::default()
-        };
-        if fit.in_front {
-            view.near = None; // nothing to cut: no test per triangle
-        }
         // Chosen once per frame, so that no loop over faces or pixels tests it.
         let batch = self.batch_shading
             && target
@@ -315,24 +411,39 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
                 .as_ref()
                 .is_none_or(|c| c.len() <= u32::MAX as usize);
         match batch {
-            true => self.draw_faces::<S, true>(stage, mesh, camera, &view, vertices, target),
-            false => self.draw_faces::<S, false>(stage, mesh, camera, &view, vertices, target),
+            true => self.draw_faces::<S, true>(stage, faces, target),
+            false => self.draw_faces::<S, false>(stage, faces, target),
         }
     }
 
-    /// Every face of `mesh`: culled, through the vertex shader, then drawn as
-    /// the stage's primitive. A mesh in full view has nothing to cut or test, so
-    /// its vertices are placed for the rasterizer once per frame
-    /// ([`Rasterizer::place`]), whichever faces share them.
-    fn draw_faces<S: Stage<Varying = V>, const BATCH: bool>(
+    /// Where `target`'s rows are drawn this frame: with nothing to cut at the
+    /// near plane when every vertex is in front of it.
+    fn view(&self, camera: &Camera, target: &Target, fit: Fit) -> View {
+        let mut view = View::new(camera, target, self.lines);
+        if fit.in_front {
+            view.near = None; // nothing to cut: no test per triangle
+        }
+        view
+    }
+
+    /// Every face of `mesh` from `faces.from` on: culled, through the vertex
+    /// shader, then drawn as the stage's primitive. A mesh in full view has
+    /// nothing to cut or test, so its vertices are placed for the rasterizer
+    /// once per frame ([`Rasterizer::place`]), whichever faces share them.
+    fn draw_faces<'t, S: Stage<Varying = V>, const BATCH: bool>(
         &mut self,
         stage: &S,
-        mesh: &Mesh,
-        camera: &Camera,
-        view: &View,
-        vertices: &Vertices,
-        target: &mut Target,
+        faces: Faces<'_, 't>,
+        target: &mut Target<'t>,
     ) {
+        let Faces {
+            mesh,
+            camera,
+            vertices,
+            from,
+            handover,
+        } = faces;
+        let mut view = self.view(camera, target, vertices.fit);
         // Room, made in the first frame, for what any band of any later frame
         // holds: a batch of pixels, and a polygon's rows the image's height.
         if BATCH {
@@ -345,12 +456,16 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         // below its rows before any shading or setup (the band that holds them
         // draws them), so that threads share the per-triangle work. The rows are
         // widened by two, more than either rasterizer's rounding can reach.
-        let rows = &view.viewport.bounds.y;
         let centre = view.viewport.centre.1;
-        let (top, bottom) = (
-            (rows.start - 2) as f32 - centre,
-            (rows.end + 2) as f32 - centre,
-        );
+        let band_rows = |view: &View| {
+            let rows = &view.viewport.bounds.y;
+            (
+                (rows.start - 2) as f32 - centre,
+                (rows.end + 2) as f32 - centre,
+            )
+        };
+        let (mut top, mut bottom) = band_rows(&view);
+        let rows = &view.viewport.bounds.y;
         let whole = rows.start == 0 && rows.end >= camera.height as i32;
         // The whole mesh in view: every vertex was projected once for the frame.
         let screen = vertices.screen();
@@ -372,6 +487,16 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
             }
             None => runs.push((0..mesh.faces.len(), pass_over)),
         }
+        if from > 0 {
+            runs.retain_mut(|(run, _)| {
+                run.start = run.start.max(from);
+                run.start < run.end
+            });
+        }
+        // Rows are handed over only where the groups' rows say how the faces
+        // left lie in them.
+        let mut handover = handover.zip(grouped.map(|(_, rows)| rows));
+        let mut handed = false;
         // Placed in the pass that projected them, for every band, if this
         // rasterizer's places can be (the built-in ones'); else here.
         let shared = R::SHARED
@@ -383,80 +508,114 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
             places.extend(screen.iter().map(|s| self.raster.place(s.x, s.y, v)));
         }
         let placed_from = shared.unwrap_or(&places);
-        for &(ref run, pass_over) in &runs {
-            for (index, face) in mesh.faces[run.clone()].iter().enumerate() {
-                let index = run.start + index;
-                if self.cull != Cull::None {
-                    let v0 = mesh.positions[face.vertices[0] as usize];
-                    let facing = (camera.position - v0).dot(face.normal);
-                    let culled = match self.cull {
-                        Cull::Back => facing < 0.0,
-                        Cull::Front => facing > 0.0,
-                        Cull::None => false,
-                    };
-                    if culled {
-                        self.stats.culled += 1;
-                        continue;
+        for r in 0..runs.len() {
+            let (run, beyond) = runs[r].clone();
+            let mut start = run.start;
+            while start < run.end {
+                // In pieces while another thread may want rows.
+                let end = match handover {
+                    Some(_) => (start + HANDOVER_EVERY).min(run.end),
+                    None => run.end,
+                };
+                // Rows handed over leave faces of any run beyond the band.
+                let pass_over = beyond || handed;
+                for (index, face) in mesh.faces[start..end].iter().enumerate() {
+                    let index = start + index;
+                    if self.cull != Cull::None {
+                        let v0 = mesh.positions[face.vertices[0] as usize];
+                        let facing = (camera.position - v0).dot(face.normal);
+                        let culled = match self.cull {
+                            Cull::Back => facing < 0.0,
+                            Cull::Front => facing > 0.0,
+                            Cull::None => false,
+                        };
+                        if culled {
+                            self.stats.culled += 1;
+                            continue;
+                        }
                     }
-                }
-                if pass_over {
-                    // Plain comparisons: the rows of vertices in view are never NaN.
-                    let [a, b, c] = face.vertices.map(|v| screen[v as usize].y);
-                    let above = (a < top) & (b < top) & (c < top);
-                    let below = (a > bottom) & (b > bottom) & (c > bottom);
-                    if above | below {
-                        // In full view it is drawn, by the band its rows are in.
+                    if pass_over {
+                        // Plain comparisons: the rows of vertices in view are never NaN.
+                        let [a, b, c] = face.vertices.map(|v| screen[v as usize].y);
+                        let above = (a < top) & (b < top) & (c < top);
+                        let below = (a > bottom) & (b > bottom) & (c > bottom);
+                        if above | below {
+                            // In full view it is drawn, by the band its rows are in.
+                            self.stats.drawn += 1;
+                            continue;
+                        }
+                    }
+                    // A triangle the rasterizer says covers nothing (most of a fine
+                    // mesh's, with the exact one) is passed over before its surface
+                    // and vertices are shaded.
+                    let placed = match in_view {
+                        true => face.vertices.map(|v| placed_from[v as usize]),
+                        false => Default::default(),
+                    };
+                    if in_view && self.raster.misses(placed, &view.viewport) {
                         self.stats.drawn += 1;
                         continue;
                     }
+                    let surface = Surface::of(mesh, index);
+                    let varyings =
+                        [0, 1, 2].map(|k| stage.vertex_shader(&mesh.vertex(face, k), &surface));
+                    let at = |k: usize| face.vertices[k] as usize;
+                    let in_camera_space = || {
+                        [0, 1, 2].map(|k| CameraVertex {
+                            position: camera_space[at(k)],
+                            varying: varyings[k],
+                        })
+                    };
+                    match S::PRIMITIVE {
+                        Primitive::Points => {
+                            self.stats.drawn += 1;
+                            self.draw_points(stage, &view, &in_camera_space(), &surface, target)
+                        }
+                        Primitive::Lines => {
+                            self.stats.drawn += 1;
+                            self.draw_edges(stage, &view, &in_camera_space(), &surface, target)
+                        }
+                        Primitive::Polygons if in_view => {
+                            let corners = [0, 1, 2].map(|k| {
+                                let zinv = screen[at(k)].zinv;
+                                Placed {
+                                    place: placed[k],
+                                    zinv,
+                                    varying: I::encode(zinv, varyings[k]),
+                                }
+                            });
+                            let corners = FaceCorners::InView(corners);
+                            self.draw_polygon::<S, BATCH>(stage, &view, corners, &surface, target)
+                        }
+                        Primitive::Polygons => {
+                            let corners = FaceCorners::InCameraSpace(in_camera_space());
+                            self.draw_polygon::<S, BATCH>(stage, &view, corners, &surface, target)
+                        }
+                    }
                 }
-                // A triangle the rasterizer says covers nothing (most of a fine
-                // mesh's, with the exact one) is passed over before its surface
-                // and vertices are shaded.
-                let placed = match in_view {
-                    true => face.vertices.map(|v| placed_from[v as usize]),
-                    false => Default::default(),
+                start = end;
+                let Some((other, group_rows)) = handover.filter(|(h, _)| h.wanted()) else {
+                    continue;
                 };
-                if in_view && self.raster.misses(placed, &view.viewport) {
-                    self.stats.drawn += 1;
+                // Another thread has no rows left: it takes the lower rows that
+                // hold about half the faces left, if that is worth a hand-over.
+                let rows = view.viewport.bounds.y.clone();
+                let (row, left) = halfway_row(&runs[r..], start, group_rows, rows.clone(), centre);
+                let (least, most) = (rows.start + LEAST_ROWS, rows.end - LEAST_ROWS);
+                if left < LEAST_HANDED || row < least || row > most {
+                    handover = None; // too little left: draw it here
                     continue;
                 }
-                let surface = Surface::of(mesh, index);
-                let varyings =
-                    [0, 1, 2].map(|k| stage.vertex_shader(&mesh.vertex(face, k), &surface));
-                let at = |k: usize| face.vertices[k] as usize;
-                let in_camera_space = || {
-                    [0, 1, 2].map(|k| CameraVertex {
-                        position: camera_space[at(k)],
-                        varying: varyings[k],
-                    })
-                };
-                match S::PRIMITIVE {
-                    Primitive::Points => {
-                        self.stats.drawn += 1;
-                        self.draw_points(stage, view, &in_camera_space(), &surface, target)
-                    }
-                    Primitive::Lines => {
-                        self.stats.drawn += 1;
-                        self.draw_edges(stage, view, &in_camera_space(), &surface, target)
-                    }
-                    Primitive::Polygons if in_view => {
-                        let corners = [0, 1, 2].map(|k| {
-                            let zinv = screen[at(k)].zinv;
-                            Placed {
-                                place: placed[k],
-                                zinv,
-                                varying: I::encode(zinv, varyings[k]),
-                            }
-                        });
-                        let corners = FaceCorners::InView(corners);
-                        self.draw_polygon::<S, BATCH>(stage, view, corners, &surface, target)
-                    }
-                    Primitive::Polygons => {
-                        let corners = FaceCorners::InCameraSpace(in_camera_space());
-                        self.draw_polygon::<S, BATCH>(stage, view, corners, &surface, target)
-                    }
+                // The batch may hold pixels of the rows handed over.
+                if BATCH {
+                    self.shade_waiting(stage, target);
                 }
+                let (kept, given) = take(target).split_at_row(row as u32);
+                *target = kept;
+                other.hand_over(given, start);
+                view = self.view(camera, target, vertices.fit);
+                (top, bottom) = band_rows(&view);
+                handed = true;
             }
         }
         self.places = places;
@@ -1346,6 +1505,72 @@ mod tests {
 
     /// Small faces in front of [`wall`]'s camera, more vertices than a part
     /// holds, round the view's axis at `reach` from it, going away.
+    /// Every hand-over a band offers taken at once, the rows kept.
+    struct Eager<'t>(std::sync::Mutex<Vec<(Target<'t>, usize)>>);
+
+    impl<'t> Handover<'t> for Eager<'t> {
+        fn wanted(&self) -> bool {
+            true
+        }
+        fn hand_over(&self, rows: Target<'t>, from: usize) {
+            self.0.lock().unwrap().push((rows, from));
+        }
+    }
+
+    #[test]
+    fn rows_handed_over_and_drawn_by_another_pipeline_keep_the_bytes_and_counts() {
+        // A million-triangle frame in small: in full view, the faces grouped.
+        let mesh = crate::scene::subdivide(&crate::scene::cornell_box(), 128);
+        let camera = Camera {
+            focal: 120.0,
+            ..Camera::handout(160, 120)
+        };
+        fn both<S: Stage, R: Rasterizer>(stage: &S, batch: bool, mesh: &Mesh, camera: &Camera) {
+            let new = || {
+                let mut p = Pipeline::<S::Varying, Perspective, R>::new();
+                p.batch_shading = batch;
+                p
+            };
+            let (mut whole, mut one) = (Frame::default(), new());
+            one.render(stage, mesh, camera, &mut whole);
+            let mut vertices = Vertices::default();
+            vertices.draw_as(S::PRIMITIVE);
+            vertices.place_as(R::SHARED);
+            vertices.group_faces(mesh);
+            vertices.prepare(mesh, camera);
+            let mut frame = Frame::default();
+            frame.resize(camera.width, camera.height, S::DEPTH_TEST);
+            let (mut top, mut bottom) = frame.target().split_at_row(30);
+            let (mut upper, mut lower, mut helper) = (new(), new(), new());
+            upper.draw_prepared(stage, mesh, camera, &vertices, &mut top);
+            let eager = Eager(Default::default());
+            lower.draw_sharing(stage, mesh, camera, &vertices, &mut bottom, Some(&eager));
+            let given = eager.0.into_inner().unwrap();
+            // Half the faces left each time, while enough are left.
+            assert!(given.len() >= 3, "{} hand-overs", given.len());
+            assert!(given.windows(2).all(|g| g[0].1 < g[1].1));
+            assert!(given
+                .iter()
+                .all(|(rows, _)| rows.rows.len() >= LEAST_ROWS as usize));
+            for (mut rows, from) in given {
+                helper.draw_given(stage, mesh, camera, &vertices, &mut rows, from);
+            }
+            assert_eq!(frame.color, whole.color);
+            assert_eq!(frame.depth, whole.depth);
+            // The pixels are shared out; each band counts every triangle.
+            let (one, bands) = (one.stats, [upper.stats, lower.stats, helper.stats]);
+            let sum = |count: fn(&Stats) -> u64| bands.iter().map(count).sum::<u64>();
+            assert_eq!(sum(|s| s.pixels_written), one.pixels_written);
+            assert_eq!(sum(|s| s.depth_rejected), one.depth_rejected);
+            for band in &bands[..2] {
+                assert_eq!((band.triangles, band.drawn), (one.triangles, one.drawn));
+            }
+        }
+        let light = Light::handout();
+        both::<_, EdgeRaster>(&PixelLight { light }, true, &mesh, &camera);
+        both::<_, RowRaster>(&Depth, false, &mesh, &camera);
+    }
+
     fn small_faces(reach: f32) -> Mesh {
         let mut mesh = Mesh::default();
         for k in 0..3 * PART / 2 {

@@ -10,7 +10,7 @@ use std::ops::Range;
 /// 0 = infinitely far), each `width` x `rows.len()` and indexed from the band's
 /// first row. A depth-only pass has no colour; a stage without a depth test
 /// needs no depth.
-#[derive(Debug)]
+#[derive(Debug, Default)]
 pub struct Target<'a> {
     pub width: u32,
     pub height: u32,
