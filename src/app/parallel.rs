@@ -172,7 +172,11 @@ impl<'t> Exchange<'t> {
     }
 
     /// Rows the other thread hands over, or none once it has ended its band.
+    /// Looked for again and again for about [`HELPER_SPIN`] before this
+    /// thread sleeps: the other band mostly ends within that, and a thread
+    /// woken from sleep took about 20 µs more a frame.
     fn wait_for_rows(&self) -> Option<(Target<'t>, usize, usize)> {
+        let (start, mut tries) = (Instant::now(), 0u32);
         let mut state = self.lock();
         loop {
             if let Some(offer) = state.offer.take() {
@@ -182,7 +186,17 @@ impl<'t> Exchange<'t> {
                 return None;
             }
             self.wanted.store(true, Ordering::Relaxed);
-            state = self.changed.wait(state).unwrap_or_else(|e| e.into_inner());
+            tries = tries.wrapping_add(1);
+            if tries < 1024 || start.elapsed() < HELPER_SPIN {
+                drop(state);
+                match tries < 1024 {
+                    true => std::hint::spin_loop(),
+                    false => std::thread::yield_now(),
+                }
+                state = self.lock();
+            } else {
+                state = self.changed.wait(state).unwrap_or_else(|e| e.into_inner());
+            }
         }
     }
 
