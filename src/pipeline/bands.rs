@@ -236,6 +236,29 @@ mod tests {
     use crate::pipeline::mesh::Face;
     use glam::Vec3;
 
+    #[test]
+    fn a_band_is_cut_where_half_its_faces_left_lie() {
+        // 64 groups, group g on image row g (the screen's centre on row 32).
+        let rows: Vec<(f32, f32)> = (0..64)
+            .map(|g| (g as f32 - 32.5, g as f32 - 31.5))
+            .collect();
+        let runs = [(0..64 * GROUP, false)];
+        assert_eq!(halfway_row(&runs, 0, &rows, 0..64, 32.0), (32, 64 * GROUP));
+        // Only the faces from `from` on are left.
+        let from = 32 * GROUP;
+        assert_eq!(
+            halfway_row(&runs, from, &rows, 0..64, 32.0),
+            (48, 32 * GROUP)
+        );
+        // Groups wholly beyond the band do not count: 17 reach rows 0 to 16.
+        assert_eq!(halfway_row(&runs, 0, &rows, 0..16, 32.0), (8, 17 * GROUP));
+        // A group with no bounded rows counts in the middle of the band.
+        let mut scattered = rows.clone();
+        scattered[0] = (f32::NEG_INFINITY, f32::INFINITY);
+        let one = [(0..GROUP, false)];
+        assert_eq!(halfway_row(&one, 0, &scattered, 0..64, 32.0), (33, GROUP));
+    }
+
     /// A grid of `n` x `n` squares, two faces each, row by row.
     fn grid(n: u32) -> Mesh {
         let mut mesh = Mesh::default();
