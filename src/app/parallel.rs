@@ -27,7 +27,7 @@ use std::cell::UnsafeCell;
 use std::ops::Range;
 use std::panic::{catch_unwind, resume_unwind, AssertUnwindSafe};
 use std::sync::atomic::{AtomicBool, AtomicU8, Ordering};
-use std::sync::{Arc, Condvar, Mutex, MutexGuard};
+use std::sync::{Arc, Mutex, MutexGuard};
 use std::thread::{JoinHandle, Thread};
 use std::time::{Duration, Instant};
 
@@ -103,7 +103,6 @@ fn draw_bands(
 /// left ([`Handover`]), so that the two end together.
 struct Exchange<'t> {
     state: Mutex<Handovers<'t>>,
-    changed: Condvar,
     /// A thread waits for rows.
     wanted: AtomicBool,
 }
@@ -117,6 +116,9 @@ struct Handovers<'t> {
     offer: Option<(Target<'t>, usize, usize)>,
     /// How long each band's rows drawn by the other thread took.
     taken: [f64; 2],
+    /// The thread waiting for rows, to be woken when some come or the other
+    /// band ends.
+    waiting: Option<Thread>,
 }
 
 /// One side of an [`Exchange`]: the band it draws.
@@ -132,8 +134,8 @@ impl<'t> Exchange<'t> {
                 drawing: 2,
                 offer: None,
                 taken: [0.0; 2],
+                waiting: None,
             }),
-            changed: Condvar::new(),
             wanted: AtomicBool::new(false),
         }
     }
@@ -171,32 +173,35 @@ impl<'t> Exchange<'t> {
         }
     }
 
-    /// Rows the other thread hands over, or none once it has ended its band.
-    /// Looked for again and again for about [`HELPER_SPIN`] before this
-    /// thread sleeps: the other band mostly ends within that, and a thread
-    /// woken from sleep took about 20 µs more a frame.
+    /// Rows the other thread hands over, or none once it has ended its band,
+    /// waited for as a helper waits for a job ([`wait_until`]): the other band
+    /// mostly ends within the spin, and waking a sleeping thread cost about
+    /// 20 µs a frame.
     fn wait_for_rows(&self) -> Option<(Target<'t>, usize, usize)> {
-        let (start, mut tries) = (Instant::now(), 0u32);
-        let mut state = self.lock();
-        loop {
-            if let Some(offer) = state.offer.take() {
-                return Some(offer);
-            }
-            if state.drawing == 0 {
-                return None;
-            }
-            self.wanted.store(true, Ordering::Relaxed);
-            tries = tries.wrapping_add(1);
-            if tries < 1024 || start.elapsed() < HELPER_SPIN {
-                drop(state);
-                match tries < 1024 {
-                    true => std::hint::spin_loop(),
-                    false => std::thread::yield_now(),
+        let mut offer = None;
+        wait_until(
+            || {
+                let mut state = self.lock();
+                offer = state.offer.take();
+                if offer.is_some() || state.drawing == 0 {
+                    state.waiting = None;
+                    return true;
                 }
-                state = self.lock();
-            } else {
-                state = self.changed.wait(state).unwrap_or_else(|e| e.into_inner());
-            }
+                if state.waiting.is_none() {
+                    state.waiting = Some(std::thread::current());
+                }
+                self.wanted.store(true, Ordering::Relaxed);
+                false
+            },
+            HELPER_SPIN,
+        );
+        offer
+    }
+
+    /// The waiting thread woken, if one sleeps: `state` has changed.
+    fn wake(state: &mut Handovers) {
+        if let Some(thread) = state.waiting.take() {
+            thread.unpark();
         }
     }
 
@@ -214,7 +219,7 @@ impl<'t> Handover<'t> for Side<'_, 't> {
         let mut state = self.exchange.lock();
         state.offer = Some((rows, from, self.band));
         self.exchange.wanted.store(false, Ordering::Relaxed);
-        self.exchange.changed.notify_all();
+        Exchange::wake(&mut state);
     }
 }
 
@@ -224,8 +229,9 @@ struct Drawing<'e, 't>(&'e Exchange<'t>);
 
 impl Drop for Drawing<'_, '_> {
     fn drop(&mut self) {
-        self.0.lock().drawing -= 1;
-        self.0.changed.notify_all();
+        let mut state = self.0.lock();
+        state.drawing -= 1;
+        Exchange::wake(&mut state);
     }
 }
 

@@ -198,7 +198,7 @@ pub fn halfway_row(
 }
 
 /// In how many parts [`halfway_row`] weighs a band's rows.
-pub const HALVING_PARTS: usize = 32;
+const HALVING_PARTS: usize = 32;
 
 /// The rows (from the screen's centre) that the vertices of each chunk of
 /// `screen` lie in: the lowest and highest `y`.

@@ -1504,8 +1504,6 @@ mod tests {
         assert!(!pipeline.stats().view_tests_skipped);
     }
 
-    /// Small faces in front of [`wall`]'s camera, more vertices than a part
-    /// holds, round the view's axis at `reach` from it, going away.
     /// Every hand-over a band offers taken at once, the rows kept.
     struct Eager<'t>(std::sync::Mutex<Vec<(Target<'t>, usize)>>);
 
@@ -1572,6 +1570,8 @@ mod tests {
         both::<_, RowRaster>(&Depth, false, &mesh, &camera);
     }
 
+    /// Small faces in front of [`wall`]'s camera, more vertices than a part
+    /// holds, round the view's axis at `reach` from it, going away.
     fn small_faces(reach: f32) -> Mesh {
         let mut mesh = Mesh::default();
         for k in 0..3 * PART / 2 {
