@@ -11,6 +11,7 @@
 #   bash benches/sitting.sh native     the native build's benches only
 #   bash benches/sitting.sh viewer     the viewer's frame times (needs xvfb-run)
 #   bash benches/sitting.sh instructions   callgrind's counts (needs valgrind)
+#   bash benches/sitting.sh before BUILD   the stages bench of BEFORE alone
 set -euo pipefail
 cd "$(dirname "$0")/.."
 what=${1:-all}
@@ -36,7 +37,51 @@ benches() { # build: default or native
         RUSTFLAGS="$flags" CARGO_TARGET_DIR=$target cargo build --release --features bench --bench $bench
         RASTERLAB_RECORD=1 RUSTFLAGS="$flags" CARGO_TARGET_DIR=$target CRITERION_HOME=$target/criterion \
             $cores cargo bench --features bench --bench $bench
+        if [ $bench = stages ]; then
+            before "$1"
+        fi
     done
+}
+
+# The commit issue #20 was filed at: its stages bench runs right after ours, in
+# the same sitting, so that "no stage slower than then" compares like with like.
+BEFORE=247e374
+
+# `before BUILD`: BEFORE's stages bench (its own code, from `git archive`) with
+# the same criterion settings as ours (20 samples, 1 s warm-up, 3 s measured),
+# its medians written as docs/bench/stages-before-BUILD.tsv.
+before() {
+    local flags="" target=$PWD/target/before
+    if [ "$1" = native ]; then
+        flags="-C target-cpu=native"
+        target=$PWD/target/before/native
+    fi
+    local tree=$PWD/target/before/tree home=$target/criterion
+    if [ ! -f "$tree/Cargo.toml" ]; then
+        mkdir -p "$tree"
+        git archive "$BEFORE" | tar -x -C "$tree"
+    fi
+    rm -rf "$home"
+    (
+        cd "$tree"
+        RUSTFLAGS="$flags" CARGO_TARGET_DIR=$target cargo build --release --features bench --bench stages
+        # shellcheck disable=SC2086
+        RUSTFLAGS="$flags" CARGO_TARGET_DIR=$target CRITERION_HOME=$home $pin \
+            cargo bench --features bench --bench stages -- --warm-up-time 1 --measurement-time 3
+    )
+    local out=docs/bench/stages-before-$1.tsv.new
+    {
+        echo "# commit $BEFORE, $(date -u +%Y-%m-%d), $1 build, one thread unless the case says"
+        printf 'case\tmedian_ms\n'
+        find "$home" -path '*/new/benchmark.json' | sort | while IFS= read -r about; do
+            local id ns
+            id=$(sed -nE 's/.*"full_id":"([^"]*)".*/\1/p' "$about")
+            ns=$(sed -nE 's/.*"median":\{"confidence_interval":\{[^}]*\},"point_estimate":([0-9.eE+-]+).*/\1/p' \
+                "${about%benchmark.json}estimates.json")
+            printf '%s\t%s\n' "$id" "$(awk -v ns="$ns" 'BEGIN { printf "%.4f", ns / 1e6 }')"
+        done
+    } >"$out"
+    mv "$out" "${out%.new}"
 }
 
 # One row of the viewer's own summary: `view LABEL ARGS...` runs it under Xvfb.
@@ -105,5 +150,6 @@ all) benches default && benches native && viewer && instructions ;;
 default | native) benches "$what" ;;
 viewer) viewer ;;
 instructions) instructions ;;
-*) echo "sitting.sh: unknown part '$what' (all, default, native, viewer, instructions)" >&2 && exit 2 ;;
+before) before "${2:?which build: default or native}" ;;
+*) echo "sitting.sh: unknown part '$what' (all, default, native, viewer, instructions, before)" >&2 && exit 2 ;;
 esac
