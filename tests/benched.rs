@@ -80,6 +80,20 @@ fn ms(v: f64) -> String {
     }
 }
 
+/// A time in ms to three significant figures, for the short cases too.
+fn fine_ms(v: f64) -> String {
+    match v {
+        v if v >= 1.0 => ms(v),
+        v if v >= 0.1 => format!("{v:.3}"),
+        v => format!("{v:.4}"),
+    }
+}
+
+/// How much slower than at the issue's filing a stage may measure and still
+/// count as no slower: within this, the shared host's noise decides
+/// (performance.md, "Every stage, before and after issue #20").
+const SAME_WITHIN: f64 = 1.05;
+
 /// Every file of the sitting.
 struct Sitting {
     sheets: HashMap<&'static str, Sheet>,
@@ -100,6 +114,8 @@ impl Sitting {
         let names = [
             "stages-default",
             "stages-native",
+            "stages-before-default",
+            "stages-before-native",
             "threads-default",
             "threads-native",
             "threads_alternating-default",
@@ -228,6 +244,61 @@ impl Sitting {
             &["stages-default", "stages-native"],
             "cargo bench --features bench --bench stages",
         )
+    }
+
+    /// Every case of the stages bench against the same bench at the commit
+    /// issue #20 was filed at, run in the same sitting: each build's medians
+    /// then and now, and now over then.
+    fn before(&self) -> String {
+        let mut out = String::from(
+            "| case | then, default | now, default | now / then | then, native | now, native | now / then |\n\
+             |---|---|---|---|---|---|---|\n",
+        );
+        for (case, _) in &self.sheet("stages-default").rows {
+            let mut cells = Vec::new();
+            for build in ["default", "native"] {
+                let then = self.sheet(&format!("stages-before-{build}")).ms(case);
+                let now = self.sheet(&format!("stages-{build}")).ms(case);
+                cells.push(format!(
+                    "{} | {} | {:.2}",
+                    fine_ms(then),
+                    fine_ms(now),
+                    now / then
+                ));
+            }
+            out.push_str(&format!("| {case} | {} |\n", cells.join(" | ")));
+        }
+        self.sourced(
+            out,
+            &[
+                "stages-before-default",
+                "stages-default",
+                "stages-before-native",
+                "stages-native",
+            ],
+            "bash benches/sitting.sh",
+        )
+    }
+
+    /// The case and build where now over then (`before`) is highest, and how
+    /// many of the cells are below 1.
+    fn slowest_against_before(&self) -> (f64, String, usize, usize) {
+        let (mut worst, mut faster, mut cells) = ((0.0, String::new()), 0, 0);
+        for build in ["default", "native"] {
+            let (then, now) = (
+                self.sheet(&format!("stages-before-{build}")),
+                self.sheet(&format!("stages-{build}")),
+            );
+            for (case, v) in &now.rows {
+                let ratio = v[0] / then.ms(case);
+                cells += 1;
+                faster += usize::from(ratio < 1.0);
+                if ratio > worst.0 {
+                    worst = (ratio, format!("{case}, {build}"));
+                }
+            }
+        }
+        (worst.0, worst.1, faster, cells)
     }
 
     fn lines(&self) -> String {
@@ -436,11 +507,21 @@ impl Sitting {
             ),
             worst[0].0 >= 1.8 && worst[1].0 >= 1.8,
         );
+        let (worst, case, faster, cells) = self.slowest_against_before();
+        let then = self.sheet("stages-before-default").commit_and_date();
+        let then = then.split(", ").next().unwrap_or_default();
+        row(
+            format!("no stage slower than at the issue's filing ({then}), one thread, both builds, in one sitting (slower: more than {SAME_WITHIN} times then)"),
+            format!("{faster} of {cells} cases faster; the highest now / then {worst:.2}, {case}"),
+            worst <= SAME_WITHIN,
+        );
         self.sourced(
             out,
             &[
                 "stages-default",
                 "stages-native",
+                "stages-before-default",
+                "stages-before-native",
                 "threads-default",
                 "threads-native",
                 "threads_alternating-default",
@@ -581,6 +662,7 @@ impl Sitting {
             "threads" => self.threads(),
             "threads in turns" => self.in_turns(),
             "targets" => self.targets(),
+            "before" => self.before(),
             "options" => self.options(),
             "instructions" => self.instructions(),
             "check" => self.check(),
@@ -618,6 +700,7 @@ fn the_bench_blocks_are_the_committed_sitting() {
         "docs/performance.md threads",
         "docs/performance.md threads in turns",
         "docs/performance.md targets",
+        "docs/performance.md before",
         "docs/performance.md options",
         "docs/performance.md instructions",
         "docs/check.md check",
