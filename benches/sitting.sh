@@ -47,41 +47,33 @@ benches() { # build: default or native
 # the same sitting, so that "no stage slower than then" compares like with like.
 BEFORE=247e374
 
-# `before BUILD`: BEFORE's stages bench (its own code, from `git archive`) with
-# the same criterion settings as ours (20 samples, 1 s warm-up, 3 s measured),
-# its medians written as docs/bench/stages-before-BUILD.tsv.
+# `before BUILD`: our stages bench (benches/stages.rs and its harness) built
+# against BEFORE's code (from `git archive`), so the cases, the criterion
+# settings and the reading of the medians are ours; written as
+# docs/bench/stages-before-BUILD.tsv, headed by BEFORE.
 before() {
     local flags="" target=$PWD/target/before
     if [ "$1" = native ]; then
         flags="-C target-cpu=native"
         target=$PWD/target/before/native
     fi
-    local tree=$PWD/target/before/tree home=$target/criterion
+    local tree=$PWD/target/before/tree
     if [ ! -f "$tree/Cargo.toml" ]; then
         mkdir -p "$tree"
         git archive "$BEFORE" | tar -x -C "$tree"
     fi
-    rm -rf "$home"
+    cp benches/stages.rs "$tree/benches/"
+    cp -r benches/common "$tree/benches/"
     (
         cd "$tree"
         RUSTFLAGS="$flags" CARGO_TARGET_DIR=$target cargo build --release --features bench --bench stages
         # shellcheck disable=SC2086
-        RUSTFLAGS="$flags" CARGO_TARGET_DIR=$target CRITERION_HOME=$home $pin \
-            cargo bench --features bench --bench stages -- --warm-up-time 1 --measurement-time 3
+        RASTERLAB_RECORD=1 RUSTFLAGS="$flags" CARGO_TARGET_DIR=$target CRITERION_HOME=$target/criterion \
+            $pin cargo bench --features bench --bench stages
     )
-    local out=docs/bench/stages-before-$1.tsv.new
-    {
-        echo "# commit $BEFORE, $(date -u +%Y-%m-%d), $1 build, one thread unless the case says"
-        printf 'case\tmedian_ms\n'
-        find "$home" -path '*/new/benchmark.json' | sort | while IFS= read -r about; do
-            local id ns
-            id=$(sed -nE 's/.*"full_id":"([^"]*)".*/\1/p' "$about")
-            ns=$(sed -nE 's/.*"median":\{"confidence_interval":\{[^}]*\},"point_estimate":([0-9.eE+-]+).*/\1/p' \
-                "${about%benchmark.json}estimates.json")
-            printf '%s\t%s\n' "$id" "$(awk -v ns="$ns" 'BEGIN { printf "%.4f", ns / 1e6 }')"
-        done
-    } >"$out"
-    mv "$out" "${out%.new}"
+    # The bench names the commit git finds, the one this tree lies in.
+    sed "1s/^# commit [^,]*,/# commit $BEFORE,/" "$tree/docs/bench/stages-$1.tsv" >"docs/bench/stages-before-$1.tsv.new"
+    mv "docs/bench/stages-before-$1.tsv.new" "docs/bench/stages-before-$1.tsv"
 }
 
 # One row of the viewer's own summary: `view LABEL ARGS...` runs it under Xvfb.

@@ -246,27 +246,35 @@ impl Sitting {
         )
     }
 
-    /// Every case of the stages bench against the same bench at the commit
-    /// issue #20 was filed at, run in the same sitting: each build's medians
-    /// then and now, and now over then.
+    /// Each case of the stages bench in `build`, with its median at the commit
+    /// issue #20 was filed at (run in the same sitting) and now.
+    fn then_and_now<'s>(&'s self, build: &str) -> impl Iterator<Item = (&'s str, f64, f64)> {
+        let then = self.sheet(&format!("stages-before-{build}"));
+        let now = self.sheet(&format!("stages-{build}"));
+        now.rows
+            .iter()
+            .map(move |(case, v)| (case.as_str(), then.ms(case), v[0]))
+    }
+
+    /// Every case's medians then and now, and now over then, both builds.
     fn before(&self) -> String {
         let mut out = String::from(
             "| case | then, default | now, default | now / then | then, native | now, native | now / then |\n\
              |---|---|---|---|---|---|---|\n",
         );
-        for (case, _) in &self.sheet("stages-default").rows {
-            let mut cells = Vec::new();
-            for build in ["default", "native"] {
-                let then = self.sheet(&format!("stages-before-{build}")).ms(case);
-                let now = self.sheet(&format!("stages-{build}")).ms(case);
-                cells.push(format!(
-                    "{} | {} | {:.2}",
-                    fine_ms(then),
-                    fine_ms(now),
-                    now / then
-                ));
-            }
-            out.push_str(&format!("| {case} | {} |\n", cells.join(" | ")));
+        for ((case, d0, d1), (_, n0, n1)) in self
+            .then_and_now("default")
+            .zip(self.then_and_now("native"))
+        {
+            out.push_str(&format!(
+                "| {case} | {} | {} | {:.2} | {} | {} | {:.2} |\n",
+                fine_ms(d0),
+                fine_ms(d1),
+                d1 / d0,
+                fine_ms(n0),
+                fine_ms(n1),
+                n1 / n0
+            ));
         }
         self.sourced(
             out,
@@ -280,25 +288,23 @@ impl Sitting {
         )
     }
 
-    /// The case and build where now over then (`before`) is highest, and how
-    /// many of the cells are below 1.
+    /// The case and build where now over then is highest, and how many of the
+    /// cells, of how many, are below 1.
     fn slowest_against_before(&self) -> (f64, String, usize, usize) {
-        let (mut worst, mut faster, mut cells) = ((0.0, String::new()), 0, 0);
-        for build in ["default", "native"] {
-            let (then, now) = (
-                self.sheet(&format!("stages-before-{build}")),
-                self.sheet(&format!("stages-{build}")),
-            );
-            for (case, v) in &now.rows {
-                let ratio = v[0] / then.ms(case);
-                cells += 1;
-                faster += usize::from(ratio < 1.0);
-                if ratio > worst.0 {
-                    worst = (ratio, format!("{case}, {build}"));
-                }
-            }
-        }
-        (worst.0, worst.1, faster, cells)
+        let ratios: Vec<(f64, String)> = ["default", "native"]
+            .iter()
+            .flat_map(|b| {
+                self.then_and_now(b)
+                    .map(move |(case, then, now)| (now / then, format!("{case}, {b}")))
+            })
+            .collect();
+        let faster = ratios.iter().filter(|(r, _)| *r < 1.0).count();
+        let (worst, case) = ratios
+            .iter()
+            .max_by(|a, b| a.0.total_cmp(&b.0))
+            .cloned()
+            .unwrap_or_default();
+        (worst, case, faster, ratios.len())
     }
 
     fn lines(&self) -> String {
