@@ -11,7 +11,7 @@
 #   bash benches/sitting.sh native     the native build's benches only
 #   bash benches/sitting.sh viewer     the viewer's frame times (needs xvfb-run)
 #   bash benches/sitting.sh instructions   callgrind's counts (needs valgrind)
-#   bash benches/sitting.sh before BUILD   the stages bench of BEFORE alone
+#   bash benches/sitting.sh stages BUILD   the stages bench, now and BEFORE in turns
 set -euo pipefail
 cd "$(dirname "$0")/.."
 what=${1:-all}
@@ -34,28 +34,32 @@ benches() { # build: default or native
         if [ $bench = threads ] && [ -n "$pin" ]; then
             cores="taskset -c 0,1 nice -n -15" # one thread against two: both cores
         fi
+        if [ $bench = stages ]; then
+            stages "$1"
+            continue
+        fi
         RUSTFLAGS="$flags" CARGO_TARGET_DIR=$target cargo build --release --features bench --bench $bench
         RASTERLAB_RECORD=1 RUSTFLAGS="$flags" CARGO_TARGET_DIR=$target CRITERION_HOME=$target/criterion \
             $cores cargo bench --features bench --bench $bench
-        if [ $bench = stages ]; then
-            before "$1"
-        fi
     done
 }
 
-# The commit issue #20 was filed at: its stages bench runs right after ours, in
-# the same sitting, so that "no stage slower than then" compares like with like.
+# The commit issue #20 was filed at: its stages bench runs beside ours, in the
+# same sitting, so that "no stage slower than then" compares like with like.
 BEFORE=247e374
 
-# `before BUILD`: our stages bench (benches/stages.rs and its harness) built
-# against BEFORE's code (from `git archive`), so the cases, the criterion
-# settings and the reading of the medians are ours; written as
-# docs/bench/stages-before-BUILD.tsv, headed by BEFORE.
-before() {
-    local flags="" target=$PWD/target/before
+# `stages BUILD`: our stages bench, and the same bench (benches/stages.rs and
+# its harness) built against BEFORE's code (from `git archive`), so the cases,
+# the criterion settings and the reading of the medians are ours. The two run
+# case by case in turns, each case measured now and then seconds apart rather
+# than minutes (the host's speed moves within minutes): docs/bench/stages-BUILD.tsv
+# and stages-before-BUILD.tsv, the latter headed by BEFORE.
+stages() {
+    local flags="" now=$PWD/target then=$PWD/target/before
     if [ "$1" = native ]; then
         flags="-C target-cpu=native"
-        target=$PWD/target/before/native
+        now=$PWD/target/native
+        then=$PWD/target/before/native
     fi
     local tree=$PWD/target/before/tree
     if [ ! -f "$tree/Cargo.toml" ]; then
@@ -64,16 +68,34 @@ before() {
     fi
     cp benches/stages.rs "$tree/benches/"
     cp -r benches/common "$tree/benches/"
-    (
-        cd "$tree"
-        RUSTFLAGS="$flags" CARGO_TARGET_DIR=$target cargo build --release --features bench --bench stages
+    # `bench DIR TARGET ARGS...`: the stages bench of the tree in DIR.
+    bench() {
+        local dir=$1 target=$2
+        shift 2
         # shellcheck disable=SC2086
-        RASTERLAB_RECORD=1 RUSTFLAGS="$flags" CARGO_TARGET_DIR=$target CRITERION_HOME=$target/criterion \
-            $pin cargo bench --features bench --bench stages
-    )
+        (cd "$dir" && RASTERLAB_RECORD=1 RASTERLAB_RECORD_ADD=1 RUSTFLAGS="$flags" CARGO_TARGET_DIR=$target \
+            CRITERION_HOME=$target/criterion $pin cargo bench --features bench --bench stages -- "$@")
+    }
+    RUSTFLAGS="$flags" CARGO_TARGET_DIR=$now cargo build --release --features bench --bench stages
+    (cd "$tree" && RUSTFLAGS="$flags" CARGO_TARGET_DIR=$then cargo build --release --features bench --bench stages)
+    rm -f "docs/bench/stages-$1.tsv" "$tree/docs/bench/stages-$1.tsv"
+    local cases
+    cases=$(bench "$PWD" "$now" --list | sed -n 's/: benchmark$//p')
+    while IFS= read -r case; do
+        bench "$PWD" "$now" --exact "$case"
+        bench "$tree" "$then" --exact "$case"
+    done <<<"$cases"
     # The bench names the commit git finds, the one this tree lies in.
     sed "1s/^# commit [^,]*,/# commit $BEFORE,/" "$tree/docs/bench/stages-$1.tsv" >"docs/bench/stages-before-$1.tsv.new"
     mv "docs/bench/stages-before-$1.tsv.new" "docs/bench/stages-before-$1.tsv"
+    local want
+    want=$(($(grep -c . <<<"$cases") + 2))
+    for sheet in "docs/bench/stages-$1.tsv" "docs/bench/stages-before-$1.tsv"; do
+        if [ "$(wc -l <"$sheet")" -ne "$want" ]; then
+            echo "sitting.sh: $sheet has not every case" >&2
+            exit 1
+        fi
+    done
 }
 
 # One row of the viewer's own summary: `view LABEL ARGS...` runs it under Xvfb.
@@ -142,6 +164,6 @@ all) benches default && benches native && viewer && instructions ;;
 default | native) benches "$what" ;;
 viewer) viewer ;;
 instructions) instructions ;;
-before) before "${2:?which build: default or native}" ;;
-*) echo "sitting.sh: unknown part '$what' (all, default, native, viewer, instructions, before)" >&2 && exit 2 ;;
+stages) stages "${2:?which build: default or native}" ;;
+*) echo "sitting.sh: unknown part '$what' (all, default, native, viewer, instructions, stages)" >&2 && exit 2 ;;
 esac

@@ -7,9 +7,9 @@
 //! cores 0 and 1). `RASTERLAB_RECORD=1` writes the medians to docs/bench/.
 //!
 //! Criterion measures one thread, then two, seconds apart; on a shared machine
-//! the host can slow one of them and not the other. So the million-triangle
-//! cases are also drawn in turns ([`alternating`]): one thread, two, and two
-//! frames at once on a thread each, which is as much as two cores here give.
+//! the host can slow one of them and not the other. So every case is also drawn
+//! in turns ([`alternating`]): one thread, two, and two frames at once on a
+//! thread each, which is as much as two cores here give.
 
 mod common;
 #[path = "common/criterion.rs"]
@@ -22,43 +22,57 @@ use rasterlab::scene::{cornell_box, subdivide};
 use rasterlab::{Figure, Frame, Mesh, StageName};
 use std::time::Instant;
 
-/// The same frame drawn by one thread and by two, in bands (`--threads`): every
-/// stage of the box at 2000x2000, pixel-light at 500x500, and a million
-/// triangles with the exact rasterizer.
-fn threads(c: &mut Criterion, ids: &mut Vec<String>) {
-    let box_ = cornell_box();
-    let million = subdivide(&box_, 183);
-    let nothing = Mesh::default();
-    let mut cases: Vec<(String, &Mesh, (u32, u32), Figure)> = Figure::FIGURES
-        .iter()
-        .map(|&f| {
-            (
-                format!("box 2000x2000, {}", f.label()),
-                &box_,
-                (2000, 2000),
-                f,
-            )
-        })
-        .collect();
-    let lit = Figure::of(StageName::PixelLight);
-    cases.push((
-        format!("box 500x500, {}", lit.label()),
-        &box_,
-        (500, 500),
-        lit,
-    ));
-    for (name, figure) in million_cases() {
-        cases.push((name, &million, (1920, 1080), figure));
+/// The meshes the cases draw.
+struct Meshes {
+    box_: Mesh,
+    million: Mesh,
+    nothing: Mesh,
+}
+
+/// One case: its name, mesh, image size and figure.
+type Case<'m> = (String, &'m Mesh, (u32, u32), Figure);
+
+impl Meshes {
+    fn new() -> Meshes {
+        let box_ = cornell_box();
+        let million = subdivide(&box_, 183);
+        Meshes {
+            box_,
+            million,
+            nothing: Mesh::default(),
+        }
     }
-    cases.push((
-        "2000x2000, the clear alone".into(),
-        &nothing,
-        (2000, 2000),
-        Figure::of(StageName::Points),
-    ));
+
+    /// Every stage of the box at 2000x2000, pixel-light at 500x500, a million
+    /// triangles (depth and pixel-light, exact rasterizer), and the clear alone.
+    fn cases(&self) -> Vec<Case<'_>> {
+        let mut cases: Vec<Case> = Figure::FIGURES
+            .iter()
+            .map(|&f| {
+                let name = format!("box 2000x2000, {}", f.label());
+                (name, &self.box_, (2000, 2000), f)
+            })
+            .collect();
+        let lit = Figure::of(StageName::PixelLight);
+        let name = format!("box 500x500, {}", lit.label());
+        cases.push((name, &self.box_, (500, 500), lit));
+        for stage in [StageName::Depth, StageName::PixelLight] {
+            let figure = Figure::of(stage).with_raster(Raster::Edge);
+            let name = format!("cornell:183 1920x1080, {}", figure.label());
+            cases.push((name, &self.million, (1920, 1080), figure));
+        }
+        let nothing = Figure::of(StageName::Points);
+        let name = "2000x2000, the clear alone".to_string();
+        cases.push((name, &self.nothing, (2000, 2000), nothing));
+        cases
+    }
+}
+
+/// Each case drawn by one thread and by two, in bands (`--threads`).
+fn threads(c: &mut Criterion, ids: &mut Vec<String>, meshes: &Meshes) {
     let mut g = c.benchmark_group("threads");
     medians::short(&mut g, 20);
-    for (name, mesh, size, figure) in cases {
+    for (name, mesh, size, figure) in meshes.cases() {
         let settings = common::settings(size);
         let inputs = Inputs::lit(settings.light);
         for threads in [1, 2] {
@@ -77,33 +91,20 @@ fn threads(c: &mut Criterion, ids: &mut Vec<String>) {
     g.finish();
 }
 
-/// The million-triangle cases: depth and pixel-light, exact rasterizer.
-fn million_cases() -> Vec<(String, Figure)> {
-    [StageName::Depth, StageName::PixelLight]
-        .map(|stage| {
-            let figure = Figure::of(stage).with_raster(Raster::Edge);
-            (format!("cornell:183 1920x1080, {}", figure.label()), figure)
-        })
-        .into()
-}
-
 /// Rounds of frames each way.
 const ROUNDS: usize = 16;
 const FRAMES: usize = 8;
 
-/// Each million-triangle case three ways in turns: drawn by one thread, by two
-/// (in bands), and as two frames at once, each by one thread of its own (what
-/// the host lets two cores do side by side: the ceiling for two threads).
-/// [`ROUNDS`] rounds of [`FRAMES`] frames each way, the ways' order turning
-/// each round, after a round to warm up; each frame timed alone, and the
-/// median frame of each way.
-fn alternating() -> Vec<(String, Vec<f64>)> {
-    let million = subdivide(&cornell_box(), 183);
-    let settings = common::settings((1920, 1080));
-    let inputs = &Inputs::lit(settings.light);
-    let (mesh, camera) = (&million, &settings.camera);
+/// Each case three ways in turns: drawn by one thread, by two (in bands), and
+/// as two frames at once, each by one thread of its own (what the host lets
+/// two cores do side by side: the ceiling for two threads). [`ROUNDS`] rounds
+/// of [`FRAMES`] frames each way, the ways' order turning each round, after a
+/// round to warm up; each frame timed alone, and the median frame of each way.
+fn alternating(meshes: &Meshes) -> Vec<(String, Vec<f64>)> {
     let mut rows = Vec::new();
-    for (name, figure) in million_cases() {
+    for (name, mesh, size, figure) in meshes.cases() {
+        let settings = common::settings(size);
+        let (inputs, camera) = (&Inputs::lit(settings.light), &settings.camera);
         let new = |threads| Parallel::new(figure, mesh, threads).expect("threads");
         let mut one = (new(1), Frame::default());
         let mut two = (new(2), Frame::default());
@@ -143,8 +144,8 @@ fn alternating() -> Vec<(String, Vec<f64>)> {
             t[t.len() / 2]
         });
         eprintln!(
-            "threads, in turns: {name}: 1 thread {one:.2} ms, 2 threads {two:.2} ms ({:.2} times), \
-             two frames at once {side:.2} ms each (the host allows {:.2} times)",
+            "threads, in turns: {name}: 1 thread {one:.3} ms, 2 threads {two:.3} ms ({:.2} times), \
+             two frames at once {side:.3} ms each (the host allows {:.2} times)",
             one / two,
             2.0 * one / side
         );
@@ -154,11 +155,12 @@ fn alternating() -> Vec<(String, Vec<f64>)> {
 }
 
 fn main() {
-    medians::run_and_record("threads", threads);
+    let meshes = Meshes::new();
+    medians::run_and_record("threads", |c, ids| threads(c, ids, &meshes));
     // Only a whole run of the bench: not `cargo test`'s pass, nor a filter.
     let whole = std::env::args().skip(1).all(|a| a.starts_with('-'));
     if std::env::args().any(|a| a == "--bench") && whole {
-        let rows = alternating();
+        let rows = alternating(&meshes);
         if common::recording() {
             let columns = ["one_thread_ms", "two_threads_ms", "two_frames_at_once_ms"];
             common::record("threads_alternating", &columns, &rows);

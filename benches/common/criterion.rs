@@ -17,10 +17,45 @@ pub fn run_and_record(name: &str, benches: impl FnOnce(&mut Criterion, &mut Vec<
     benches(&mut c, &mut ids);
     c.final_summary();
     if super::common::recording() {
-        if let Some(medians) = criterion_medians(since, &ids) {
+        let (medians, whole) = criterion_medians(since, &ids);
+        if whole {
             super::common::record(name, &["median_ms"], &medians);
+        } else if std::env::var_os("RASTERLAB_RECORD_ADD").is_some() && !medians.is_empty() {
+            add(name, &["median_ms"], &medians);
+        } else {
+            // A sitting is never a mix of runs unless it asks to be.
+            eprintln!("not recorded: this run measured only some of the benchmarks (a filter?); RASTERLAB_RECORD_ADD=1 adds them to the sitting");
         }
     }
+}
+
+/// Adds `rows` to `docs/bench/NAME-BUILD.tsv` (replacing the cases it has),
+/// when that file names the same commit and build; otherwise starts it. For a
+/// sitting that runs a bench one case at a time (benches/sitting.sh draws the
+/// stages of now and then in turns, case by case).
+fn add(name: &str, columns: &[&str], rows: &[(String, Vec<f64>)]) {
+    let header = super::common::header(columns);
+    let (title, _) = header.split_once('\n').unwrap_or_default();
+    // "# commit C, DATE, BUILD build, ...": the same code and build, any date.
+    let same = |line: &str| {
+        let fields: Vec<&str> = line.split(", ").collect();
+        let theirs: Vec<&str> = title.split(", ").collect();
+        fields.len() > 2 && fields[0] == theirs[0] && fields[2] == theirs[2]
+    };
+    let kept = std::fs::read_to_string(super::common::path(name)).unwrap_or_default();
+    let mut lines = kept.lines();
+    let mut all = Vec::new();
+    if lines.next().is_some_and(same) && lines.next() == header.lines().nth(1) {
+        for line in lines {
+            let (case, values) = line.split_once('\t').unwrap_or((line, ""));
+            if rows.iter().all(|(c, _)| c != case) {
+                let values = values.split('\t').filter_map(|v| v.parse().ok());
+                all.push((case.to_string(), values.collect()));
+            }
+        }
+    }
+    all.extend(rows.iter().cloned());
+    super::common::write(name, &header, &all);
 }
 
 /// `samples` samples in about 3 s after 1 s of warming up (criterion takes
@@ -50,9 +85,9 @@ fn text_field<'a>(json: &'a str, field: &str) -> Option<&'a str> {
 
 /// The median, in ms, of each benchmark `order` names (the full ids as the bench
 /// named them) as this process measured it (criterion's `new/estimates.json`
-/// written since `since`), in that order; `None`, said on stderr, when the run
-/// measured only some of them (a filter), so a sitting is never a mix.
-fn criterion_medians(since: SystemTime, order: &[String]) -> Option<Vec<(String, Vec<f64>)>> {
+/// written since `since`), in that order, and whether it measured all of them
+/// (not, with a filter).
+fn criterion_medians(since: SystemTime, order: &[String]) -> (Vec<(String, Vec<f64>)>, bool) {
     let mut found = Vec::new();
     let mut stack = vec![criterion_home()];
     while let Some(dir) = stack.pop() {
@@ -93,15 +128,13 @@ fn criterion_medians(since: SystemTime, order: &[String]) -> Option<Vec<(String,
             }
         }
     }
-    let medians: Option<Vec<_>> = order
+    let medians: Vec<_> = order
         .iter()
-        .map(|id| {
+        .filter_map(|id| {
             let ms = found.iter().find(|(f, _)| f == id)?.1;
             Some((id.clone(), vec![ms]))
         })
         .collect();
-    if medians.is_none() {
-        eprintln!("not recorded: this run measured only some of the benchmarks (a filter?)");
-    }
-    medians
+    let whole = medians.len() == order.len();
+    (medians, whole)
 }

@@ -50,6 +50,11 @@ fn git(args: &[&str]) -> String {
 /// with changes not yet committed (in what the benches build) is named
 /// `COMMIT+changes`.
 pub fn record(name: &str, columns: &[&str], rows: &[(String, Vec<f64>)]) {
+    write(name, &header(columns), rows);
+}
+
+/// The sitting's first two lines: the commit and date, and the columns.
+pub fn header(columns: &[&str]) -> String {
     let mut commit = git(&["rev-parse", "--short=7", "HEAD"]);
     let built = ["src", "benches", "Cargo.toml", "Cargo.lock"];
     let status = [
@@ -65,19 +70,27 @@ pub fn record(name: &str, columns: &[&str], rows: &[(String, Vec<f64>)]) {
         .output()
         .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
         .unwrap_or_default();
-    let mut csv = format!(
+    format!(
         "# commit {commit}, {date}, {} build, one thread unless the case says\ncase\t{}\n",
         build(),
         columns.join("\t")
-    );
+    )
+}
+
+pub fn path(name: &str) -> std::path::PathBuf {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/bench");
+    dir.join(format!("{name}-{}.tsv", build()))
+}
+
+pub fn write(name: &str, header: &str, rows: &[(String, Vec<f64>)]) {
+    let mut csv = header.to_string();
     for (case, values) in rows {
         assert!(!case.contains('\t'), "a tab in {case}");
         let values: Vec<String> = values.iter().map(|v| format!("{v:.4}")).collect();
         csv.push_str(&format!("{case}\t{}\n", values.join("\t")));
     }
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/bench");
-    std::fs::create_dir_all(&dir).expect("docs/bench");
-    let path = dir.join(format!("{name}-{}.tsv", build()));
+    let path = path(name);
+    std::fs::create_dir_all(path.parent().expect("docs/bench")).expect("docs/bench");
     let temporary = path.with_extension("tsv.new");
     std::fs::write(&temporary, csv).expect("the sitting written");
     std::fs::rename(&temporary, &path).expect("the sitting renamed into place");
