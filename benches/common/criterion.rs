@@ -20,7 +20,9 @@ pub fn run_and_record(name: &str, benches: impl FnOnce(&mut Criterion, &mut Vec<
         let (medians, whole) = criterion_medians(since, &ids);
         if whole {
             super::common::record(name, &["median_ms"], &medians);
-        } else if std::env::var_os("RASTERLAB_RECORD_ADD").is_some() && !medians.is_empty() {
+        } else if medians.is_empty() {
+            // Nothing measured (`--list`, or a filter that matched nothing).
+        } else if std::env::var_os("RASTERLAB_RECORD_ADD").is_some() {
             add(name, &["median_ms"], &medians);
         } else {
             // A sitting is never a mix of runs unless it asks to be.
