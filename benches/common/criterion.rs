@@ -37,21 +37,21 @@ pub fn run_and_record(name: &str, benches: impl FnOnce(&mut Criterion, &mut Vec<
 /// stages of now and then in turns, case by case).
 fn add(name: &str, columns: &[&str], rows: &[(String, Vec<f64>)]) {
     let header = super::common::header(columns);
-    let (title, _) = header.split_once('\n').unwrap_or_default();
     // "# commit C, DATE, BUILD build, ...": the same code and build, any date.
-    let same = |line: &str| {
-        let fields: Vec<&str> = line.split(", ").collect();
-        let theirs: Vec<&str> = title.split(", ").collect();
-        fields.len() > 2 && fields[0] == theirs[0] && fields[2] == theirs[2]
-    };
+    fn code_and_build(title: &str) -> (Option<&str>, Option<&str>) {
+        let mut fields = title.split(", ");
+        (fields.next(), fields.nth(1))
+    }
+    let ours = header.lines().next().map(code_and_build);
     let kept = std::fs::read_to_string(super::common::path(name)).unwrap_or_default();
     let mut lines = kept.lines();
     let mut all = Vec::new();
-    if lines.next().is_some_and(same) && lines.next() == header.lines().nth(1) {
+    if lines.next().map(code_and_build) == ours && lines.next() == header.lines().nth(1) {
         for line in lines {
             let (case, values) = line.split_once('\t').unwrap_or((line, ""));
             if rows.iter().all(|(c, _)| c != case) {
-                let values = values.split('\t').filter_map(|v| v.parse().ok());
+                // NaN, not a dropped column, for a value that does not read.
+                let values = values.split('\t').map(|v| v.parse().unwrap_or(f64::NAN));
                 all.push((case.to_string(), values.collect()));
             }
         }

@@ -77,11 +77,13 @@ pub fn header(columns: &[&str]) -> String {
     )
 }
 
+/// Where the sitting's `NAME` file of this build is.
 pub fn path(name: &str) -> std::path::PathBuf {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/bench");
     dir.join(format!("{name}-{}.tsv", build()))
 }
 
+/// `header` and `rows` written to [`path`] through a temporary file.
 pub fn write(name: &str, header: &str, rows: &[(String, Vec<f64>)]) {
     let mut csv = header.to_string();
     for (case, values) in rows {

@@ -187,9 +187,10 @@ pub fn draw_line_by<V: Varying>(
             let steps = Steps::new(a, b, line_pixels(&a, &b));
             // Both ends in the bounds' rows: no search for where the walk
             // enters and leaves them (`in_bounds` tests each pixel anyway).
-            match bounds.y.contains(&a.y) && bounds.y.contains(&b.y) {
-                true => steps.for_each(in_bounds),
-                false => steps.within_rows(bounds.y.clone()).for_each(in_bounds),
+            if bounds.y.contains(&a.y) && bounds.y.contains(&b.y) {
+                steps.for_each(in_bounds)
+            } else {
+                steps.within_rows(bounds.y.clone()).for_each(in_bounds)
             }
         }
         Lines::Bresenham => walk_line(lines, a, b, in_bounds),
