@@ -8,8 +8,10 @@
 //!
 //! Criterion measures one thread, then two, seconds apart; on a shared machine
 //! the host can slow one of them and not the other. So every case is also drawn
-//! in turns ([`alternating`]): one thread, two, and two frames at once on a
-//! thread each, which is as much as two cores here give.
+//! in turns ([`alternating`]): one thread, two, two frames at once on a
+//! thread each, which is as much as two cores here give, and the two threads'
+//! bands one after the other on one thread, which is what the split itself
+//! costs.
 
 mod common;
 #[path = "common/criterion.rs"]
@@ -19,7 +21,7 @@ use criterion::Criterion;
 use rasterlab::app::figure::{Inputs, Raster};
 use rasterlab::app::parallel::Parallel;
 use rasterlab::scene::{cornell_box, subdivide};
-use rasterlab::{Figure, Frame, Mesh, StageName};
+use rasterlab::{Camera, Figure, Frame, Mesh, StageName};
 use std::time::Instant;
 
 /// The meshes the cases draw.
@@ -95,11 +97,14 @@ fn threads(c: &mut Criterion, ids: &mut Vec<String>, meshes: &Meshes) {
 const ROUNDS: usize = 16;
 const FRAMES: usize = 8;
 
-/// Each case three ways in turns: drawn by one thread, by two (in bands), and
-/// as two frames at once, each by one thread of its own (what the host lets
-/// two cores do side by side: the ceiling for two threads). [`ROUNDS`] rounds
-/// of [`FRAMES`] frames each way, the ways' order turning each round, after a
-/// round to warm up; each frame timed alone, and the median frame of each way.
+/// Each case four ways in turns: drawn by one thread, by two (in bands), as
+/// two frames at once, each by one thread of its own (what the host lets two
+/// cores do side by side: the ceiling for two threads), and as two threads'
+/// bands drawn one after the other on one thread (the work of the split,
+/// apart from the second core: [`Parallel::render_in_turn`]). [`ROUNDS`]
+/// rounds of [`FRAMES`] frames each way, the ways' order turning each round,
+/// after a round to warm up; each frame timed alone, and the median frame of
+/// each way.
 fn alternating(meshes: &Meshes) -> Vec<(String, Vec<f64>)> {
     let mut rows = Vec::new();
     for (name, mesh, size, figure) in meshes.cases() {
@@ -109,21 +114,29 @@ fn alternating(meshes: &Meshes) -> Vec<(String, Vec<f64>)> {
         let mut one = (new(1), Frame::default());
         let mut two = (new(2), Frame::default());
         let mut side = [(new(1), Frame::default()), (new(1), Frame::default())];
-        let mut times = [(); 3].map(|_| Vec::with_capacity(2 * ROUNDS * FRAMES));
-        // FRAMES frames, each timed.
-        let draw = |(parallel, frame): &mut (Parallel, Frame), times: &mut Vec<f64>| {
-            for _ in 0..FRAMES {
-                let start = Instant::now();
-                parallel.render(inputs, mesh, camera, frame);
-                times.push(start.elapsed().as_secs_f64() * 1e3);
-            }
+        let mut in_turn = (new(2), Frame::default());
+        let mut times = [(); 4].map(|_| Vec::with_capacity(2 * ROUNDS * FRAMES));
+        // FRAMES frames, each timed, drawn by `render`.
+        let frames =
+            |(parallel, frame): &mut (Parallel, Frame),
+             times: &mut Vec<f64>,
+             render: fn(&mut Parallel, &Inputs, &Mesh, &Camera, &mut Frame)| {
+                for _ in 0..FRAMES {
+                    let start = Instant::now();
+                    render(parallel, inputs, mesh, camera, frame);
+                    times.push(start.elapsed().as_secs_f64() * 1e3);
+                }
+            };
+        let draw = |way: &mut (Parallel, Frame), times: &mut Vec<f64>| {
+            frames(way, times, Parallel::render)
         };
         for round in 0..=ROUNDS {
-            for way in (0..3).map(|k| (k + round) % 3) {
-                let [t1, t2, t3] = &mut times;
+            for way in (0..4).map(|k| (k + round) % 4) {
+                let [t1, t2, t3, t4] = &mut times;
                 match way {
                     0 => draw(&mut one, t1),
                     1 => draw(&mut two, t2),
+                    3 => frames(&mut in_turn, t4, Parallel::render_in_turn),
                     _ => {
                         let [a, b] = &mut side;
                         let mut other = Vec::with_capacity(FRAMES);
@@ -139,17 +152,19 @@ fn alternating(meshes: &Meshes) -> Vec<(String, Vec<f64>)> {
                 times.iter_mut().for_each(Vec::clear); // warming up
             }
         }
-        let [one, two, side] = times.map(|mut t| {
+        let [one, two, side, in_turn] = times.map(|mut t| {
             t.sort_by(f64::total_cmp);
             t[t.len() / 2]
         });
         eprintln!(
             "threads, in turns: {name}: 1 thread {one:.3} ms, 2 threads {two:.3} ms ({:.2} times), \
-             two frames at once {side:.3} ms each (the host allows {:.2} times)",
+             two frames at once {side:.3} ms each (the host allows {:.2} times), \
+             two bands in turn {in_turn:.3} ms ({:.2} times one thread's work)",
             one / two,
-            2.0 * one / side
+            2.0 * one / side,
+            in_turn / one
         );
-        rows.push((name, vec![one, two, side]));
+        rows.push((name, vec![one, two, side, in_turn]));
     }
     rows
 }
@@ -162,7 +177,12 @@ fn main() {
     if std::env::args().any(|a| a == "--bench") && whole {
         let rows = alternating(&meshes);
         if common::recording() {
-            let columns = ["one_thread_ms", "two_threads_ms", "two_frames_at_once_ms"];
+            let columns = [
+                "one_thread_ms",
+                "two_threads_ms",
+                "two_frames_at_once_ms",
+                "two_bands_in_turn_ms",
+            ];
             common::record("threads_alternating", &columns, &rows);
         }
     }

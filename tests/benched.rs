@@ -370,6 +370,15 @@ impl Sitting {
         (v[0], v[1], v[2])
     }
 
+    /// The two threads' bands drawn one after the other on one thread, drawn
+    /// in the same turns, if the sitting measured it (after b8f34fb).
+    fn in_turn_of(&self, build: &str, case: &str) -> Option<f64> {
+        self.sheet(&format!("threads_alternating-{build}"))
+            .get(case)
+            .get(3)
+            .copied()
+    }
+
     fn threads(&self) -> String {
         let mut out = String::from(
             "| case | 1 thread, default | 2 threads, default | ratio | 1 thread, native | 2 threads, native | ratio |\n\
@@ -403,18 +412,24 @@ impl Sitting {
         )
     }
 
-    /// Every case of the threads bench drawn in turns: one thread, two, and
-    /// two frames at once on a thread each.
+    /// Every case of the threads bench drawn in turns: one thread, two, two
+    /// frames at once on a thread each, and the two threads' bands one after
+    /// the other on one thread (what the split's work costs, against one
+    /// thread's frame).
     fn in_turns(&self) -> String {
         let mut out = String::from(
-            "| case | build | 1 thread | 2 threads | ratio | two frames at once, each | two cores allow |\n\
-             |---|---|---|---|---|---|---|\n",
+            "| case | build | 1 thread | 2 threads | ratio | two frames at once, each | two cores allow | two bands in turn | the split's work |\n\
+             |---|---|---|---|---|---|---|---|---|\n",
         );
         for (case, _) in &self.sheet("threads_alternating-default").rows {
             for build in ["default", "native"] {
                 let (one, two, side) = self.in_turns_of(build, case);
+                let (in_turn, work) = match self.in_turn_of(build, case) {
+                    Some(t) => (fine_ms(t), format!("{:.3} times", t / one)),
+                    None => ("not measured".into(), "".into()),
+                };
                 out.push_str(&format!(
-                    "| {case} | {build} | {} | {} | {:.2} | {} | {:.2} |\n",
+                    "| {case} | {build} | {} | {} | {:.2} | {} | {:.2} | {in_turn} | {work} |\n",
                     fine_ms(one),
                     fine_ms(two),
                     one / two,

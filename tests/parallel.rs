@@ -2,7 +2,8 @@
 //! for byte, whatever the number of threads, the stage or the rasterizer: with
 //! the mesh wholly in view (each band passes over the triangles outside its
 //! rows), partly out of it (every band looks at every triangle), and with a
-//! million triangles.
+//! million triangles; and the same bands drawn one after the other on one
+//! thread, as the threads bench measures what the split costs.
 
 use rasterlab::app::figure::Inputs;
 use rasterlab::app::figure::Raster;
@@ -58,13 +59,17 @@ fn one_two_and_seven_threads_draw_the_same_bytes() {
         for &figure in figures {
             for raster in [Raster::Rows, Raster::Edge] {
                 let figure = figure.with_raster(raster);
-                let draw = |threads: usize| {
+                // On the threads, or (`in_turn`) the same bands one after the other.
+                let draw = |threads: usize, in_turn: bool| {
                     let mut p = Parallel::new(figure, &scene.mesh, threads).unwrap();
                     let mut frame = Frame::default();
-                    p.render(&uniforms, &scene.mesh, &camera, &mut frame);
+                    match in_turn {
+                        true => p.render_in_turn(&uniforms, &scene.mesh, &camera, &mut frame),
+                        false => p.render(&uniforms, &scene.mesh, &camera, &mut frame),
+                    }
                     (frame, p.stats())
                 };
-                let (one, stats) = draw(1);
+                let (one, stats) = draw(1, false);
                 // In view, each band passes over the triangles outside its rows.
                 assert_eq!(stats.view_tests_skipped, in_view, "{}", scene.name);
                 // Something was drawn (the box's points light 18 pixels): equal
@@ -76,11 +81,11 @@ fn one_two_and_seven_threads_draw_the_same_bytes() {
                     scene.name,
                     figure.label()
                 );
-                for threads in [2, 7] {
-                    let (many, many_stats) = draw(threads);
+                for (threads, in_turn) in [(2, false), (7, false), (2, true), (7, true)] {
+                    let (many, many_stats) = draw(threads, in_turn);
                     assert!(
                         one.color == many.color,
-                        "{} {}: {threads} threads",
+                        "{} {}: {threads} threads, in turn: {in_turn}",
                         scene.name,
                         figure.label()
                     );

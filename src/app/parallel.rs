@@ -20,7 +20,7 @@ use crate::extensions::normal_map::TangentFrame;
 use crate::extensions::texture::Model;
 use crate::pipeline::bands::CHUNK;
 use crate::pipeline::clip::ScreenVertex;
-use crate::pipeline::draw::{Handover, Join, Stats, Vertices};
+use crate::pipeline::draw::{Handover, InTurn, Join, Stats, Vertices};
 use crate::pipeline::{Camera, Frame, Mesh, Target};
 use std::any::Any;
 use std::cell::UnsafeCell;
@@ -57,12 +57,12 @@ pub struct Parallel {
 /// allocates nothing for its threads. Two bands side by side share their
 /// rows ([`Exchange`]). Every pipeline draws, an empty band too, so that each
 /// one's counts are this frame's.
-fn draw_bands(
+fn draw_bands<J: Join>(
     pipelines: &mut [Box<dyn Render>],
     (ends, times): (&[u32], &mut [f64]),
     target: Target,
     prepared: Prepared,
-    join: &impl Join,
+    join: &J,
 ) {
     match pipelines {
         [] => {}
@@ -71,7 +71,8 @@ fn draw_bands(
             only.draw_sharing(prepared, &mut target, None);
             times[0] = start.elapsed().as_secs_f64();
         }
-        [first, second] => {
+        // Only bands drawn at the same time can hand rows over.
+        [first, second] if J::AT_ONCE => {
             let (top, bottom) = target.split_at_row(ends[0]);
             let exchange = Exchange::new();
             let (first_time, second_time) = times.split_at_mut(1);
@@ -290,14 +291,34 @@ impl Parallel {
         let helpers = std::mem::take(&mut self.helpers);
         self.prepare_and_draw(inputs, mesh, camera, frame, &helpers);
         self.helpers = helpers;
-        // Each band decides about every triangle alike; pixels are its own.
+        self.stats = self.summed_stats();
+    }
+
+    /// The bands' counts: each band decides about every triangle alike;
+    /// pixels are its own.
+    fn summed_stats(&self) -> Stats {
         let mut stats = self.pipelines[0].stats();
         for p in &self.pipelines[1..] {
             let s = p.stats();
             stats.pixels_written += s.pixels_written;
             stats.depth_rejected += s.depth_rejected;
         }
-        self.stats = stats;
+        stats
+    }
+
+    /// The frame [`Parallel::render`] draws, on the calling thread alone: the
+    /// same split and the same bands, drawn one after the other, no rows handed
+    /// over. What splitting the frame costs, apart from running on two cores
+    /// (the threads bench's "two bands in turn").
+    pub fn render_in_turn(
+        &mut self,
+        inputs: &Inputs,
+        mesh: &Mesh,
+        camera: &Camera,
+        frame: &mut Frame,
+    ) {
+        self.prepare_and_draw(inputs, mesh, camera, frame, &InTurn);
+        self.stats = self.summed_stats();
     }
 
     /// The frame's vertices prepared, the bands balanced, and each band drawn,
