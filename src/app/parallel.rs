@@ -57,12 +57,12 @@ pub struct Parallel {
 /// allocates nothing for its threads. Two bands side by side share their
 /// rows ([`Exchange`]). Every pipeline draws, an empty band too, so that each
 /// one's counts are this frame's.
-fn draw_bands<J: Join>(
+fn draw_bands(
     pipelines: &mut [Box<dyn Render>],
     (ends, times): (&[u32], &mut [f64]),
     target: Target,
     prepared: Prepared,
-    join: &J,
+    join: &impl Join,
 ) {
     match pipelines {
         [] => {}
@@ -71,8 +71,7 @@ fn draw_bands<J: Join>(
             only.draw_sharing(prepared, &mut target, None);
             times[0] = start.elapsed().as_secs_f64();
         }
-        // Only bands drawn at the same time can hand rows over.
-        [first, second] if J::AT_ONCE => {
+        [first, second] => {
             let (top, bottom) = target.split_at_row(ends[0]);
             let exchange = Exchange::new();
             let (first_time, second_time) = times.split_at_mut(1);
@@ -109,8 +108,10 @@ struct Exchange<'t> {
 }
 
 struct Handovers<'t> {
-    /// How many bands are still drawn by their own threads (only they hand
-    /// rows over).
+    /// How many bands are being drawn by their own threads (only they hand
+    /// rows over): a band counts from when its thread starts it, so that a
+    /// band ended before the other started (the two joined in turn) waits for
+    /// nothing.
     drawing: usize,
     /// Rows handed over and not yet taken: the rows, the first face not drawn
     /// in them, and the band they were cut from.
@@ -132,7 +133,7 @@ impl<'t> Exchange<'t> {
     fn new() -> Self {
         Exchange {
             state: Mutex::new(Handovers {
-                drawing: 2,
+                drawing: 0,
                 offer: None,
                 taken: [0.0; 2],
                 waiting: None,
@@ -148,7 +149,8 @@ impl<'t> Exchange<'t> {
 
     /// Band `band` drawn with `pipeline` into `target` (its time in `time`),
     /// handing rows over while the other thread wants them; then rows the other
-    /// band hands over, until it has ended.
+    /// band hands over, until it has ended. If the other has not started (the
+    /// two joined in turn: no helper was free), there is nothing to wait for.
     fn draw(
         &self,
         pipeline: &mut Box<dyn Render>,
@@ -159,7 +161,7 @@ impl<'t> Exchange<'t> {
     ) {
         let start = Instant::now();
         {
-            let _drawing = Drawing(self);
+            let _drawing = Drawing::new(self);
             let side = Side {
                 exchange: self,
                 band,
@@ -227,6 +229,13 @@ impl<'t> Handover<'t> for Side<'_, 't> {
 /// A band drawn by its own thread until this is dropped, a panic's unwinding
 /// too, so that the other thread never waits for rows that cannot come.
 struct Drawing<'e, 't>(&'e Exchange<'t>);
+
+impl<'e, 't> Drawing<'e, 't> {
+    fn new(exchange: &'e Exchange<'t>) -> Self {
+        exchange.lock().drawing += 1;
+        Drawing(exchange)
+    }
+}
 
 impl Drop for Drawing<'_, '_> {
     fn drop(&mut self) {
@@ -765,6 +774,28 @@ mod tests {
             || split_sum(helpers, range.start..middle, sum),
             || split_sum(helpers, middle..range.end, sum),
         );
+    }
+
+    /// Two bands that share their rows, joined in turn because no helper
+    /// serves the join: the first ends without waiting for the second, which
+    /// has not started, and the frame is one thread's.
+    #[test]
+    fn bands_joined_in_turn_draw_one_threads_frame() {
+        let mesh = cornell_box();
+        let camera = Camera::handout(120, 90);
+        let inputs = Inputs::lit(Light::handout());
+        let figure = Figure::of(StageName::PixelLight);
+        let mut one = Frame::default();
+        Parallel::new(figure, &mesh, 1)
+            .unwrap()
+            .render(&inputs, &mesh, &camera, &mut one);
+        let mut two = Parallel::new(figure, &mesh, 2).unwrap();
+        let mut frame = Frame::default();
+        for _ in 0..3 {
+            two.prepare_and_draw(&inputs, &mesh, &camera, &mut frame, &unserved());
+            assert!(frame.color == one.color);
+        }
+        assert!(one.color.iter().filter(|&&c| c != 0).count() > 1000);
     }
 
     #[test]

@@ -1387,10 +1387,6 @@ fn rows_of_groups(
 /// otherwise. The pipeline starts
 /// no threads of its own.
 pub trait Join: Sync {
-    /// Whether the two pieces may run at the same time, so that one may wait
-    /// for the other (two bands handing rows over do).
-    const AT_ONCE: bool = true;
-
     fn join<A: FnOnce() + Send, B: FnOnce() + Send>(&self, a: A, b: B);
 }
 
@@ -1398,8 +1394,6 @@ pub trait Join: Sync {
 pub struct InTurn;
 
 impl Join for InTurn {
-    const AT_ONCE: bool = false;
-
     fn join<A: FnOnce() + Send, B: FnOnce() + Send>(&self, a: A, b: B) {
         a();
         b();
