@@ -117,7 +117,7 @@ fn alternating(meshes: &Meshes) -> Vec<(String, Vec<f64>)> {
         let mut in_turn = (new(2), Frame::default());
         let mut times = [(); 4].map(|_| Vec::with_capacity(2 * ROUNDS * FRAMES));
         // FRAMES frames, each timed, drawn by `render`.
-        let frames =
+        let draw =
             |(parallel, frame): &mut (Parallel, Frame),
              times: &mut Vec<f64>,
              render: fn(&mut Parallel, &Inputs, &Mesh, &Camera, &mut Frame)| {
@@ -127,22 +127,20 @@ fn alternating(meshes: &Meshes) -> Vec<(String, Vec<f64>)> {
                     times.push(start.elapsed().as_secs_f64() * 1e3);
                 }
             };
-        let draw = |way: &mut (Parallel, Frame), times: &mut Vec<f64>| {
-            frames(way, times, Parallel::render)
-        };
+        let render = Parallel::render;
         for round in 0..=ROUNDS {
             for way in (0..4).map(|k| (k + round) % 4) {
                 let [t1, t2, t3, t4] = &mut times;
                 match way {
-                    0 => draw(&mut one, t1),
-                    1 => draw(&mut two, t2),
-                    3 => frames(&mut in_turn, t4, Parallel::render_in_turn),
+                    0 => draw(&mut one, t1, render),
+                    1 => draw(&mut two, t2, render),
+                    3 => draw(&mut in_turn, t4, Parallel::render_in_turn),
                     _ => {
                         let [a, b] = &mut side;
                         let mut other = Vec::with_capacity(FRAMES);
                         std::thread::scope(|s| {
-                            s.spawn(|| draw(b, &mut other));
-                            draw(a, t3);
+                            s.spawn(|| draw(b, &mut other, render));
+                            draw(a, t3, render);
                         });
                         t3.extend(other);
                     }

@@ -361,22 +361,14 @@ impl Sitting {
         )
     }
 
-    /// One thread's median frame, two threads', and two frames' at once
-    /// (a thread each), drawn in turns.
-    fn in_turns_of(&self, build: &str, case: &str) -> (f64, f64, f64) {
+    /// One thread's median frame, two threads', two frames' at once (a thread
+    /// each), and two threads' bands one after the other on one thread, drawn
+    /// in turns.
+    fn in_turns_of(&self, build: &str, case: &str) -> (f64, f64, f64, f64) {
         let v = self
             .sheet(&format!("threads_alternating-{build}"))
             .get(case);
-        (v[0], v[1], v[2])
-    }
-
-    /// The two threads' bands drawn one after the other on one thread, drawn
-    /// in the same turns, if the sitting measured it (after b8f34fb).
-    fn in_turn_of(&self, build: &str, case: &str) -> Option<f64> {
-        self.sheet(&format!("threads_alternating-{build}"))
-            .get(case)
-            .get(3)
-            .copied()
+        (v[0], v[1], v[2], v[3])
     }
 
     fn threads(&self) -> String {
@@ -423,18 +415,16 @@ impl Sitting {
         );
         for (case, _) in &self.sheet("threads_alternating-default").rows {
             for build in ["default", "native"] {
-                let (one, two, side) = self.in_turns_of(build, case);
-                let (in_turn, work) = match self.in_turn_of(build, case) {
-                    Some(t) => (fine_ms(t), format!("{:.3} times", t / one)),
-                    None => ("not measured".into(), "".into()),
-                };
+                let (one, two, side, in_turn) = self.in_turns_of(build, case);
                 out.push_str(&format!(
-                    "| {case} | {build} | {} | {} | {:.2} | {} | {:.2} | {in_turn} | {work} |\n",
+                    "| {case} | {build} | {} | {} | {:.2} | {} | {:.2} | {} | {:.3} times |\n",
                     fine_ms(one),
                     fine_ms(two),
                     one / two,
                     fine_ms(side),
-                    2.0 * one / side
+                    2.0 * one / side,
+                    fine_ms(in_turn),
+                    in_turn / one
                 ));
             }
         }
@@ -472,7 +462,7 @@ impl Sitting {
         // criterion's medians (measured seconds apart) shown beside.
         let turns = |case: &str| {
             ["default", "native"].map(|b| {
-                let (one, two, side) = self.in_turns_of(b, case);
+                let (one, two, side, _) = self.in_turns_of(b, case);
                 Turns {
                     ratio: one / two,
                     two_ms: two,
@@ -666,9 +656,10 @@ impl Sitting {
         let frames: Vec<String> = free.iter().map(|(_, v)| format!("{:.2}", v[0])).collect();
         let draw = |f: fn(f64, f64) -> f64, start| free.iter().map(|(_, v)| v[1]).fold(start, f);
         let (least, most) = (draw(f64::min, f64::MAX), draw(f64::max, 0.0));
-        let drawing = match format!("{least:.2}") == format!("{most:.2}") {
-            true => format!("{least:.2}"),
-            false => format!("{least:.2} to {most:.2}"),
+        let drawing = if format!("{least:.2}") == format!("{most:.2}") {
+            format!("{least:.2}")
+        } else {
+            format!("{least:.2} to {most:.2}")
         };
         let fastest = free.iter().map(|(_, v)| v[0]).fold(f64::MAX, f64::min);
         let slowest = free.iter().map(|(_, v)| v[0]).fold(0.0, f64::max);

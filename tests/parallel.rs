@@ -63,9 +63,10 @@ fn one_two_and_seven_threads_draw_the_same_bytes() {
                 let draw = |threads: usize, in_turn: bool| {
                     let mut p = Parallel::new(figure, &scene.mesh, threads).unwrap();
                     let mut frame = Frame::default();
-                    match in_turn {
-                        true => p.render_in_turn(&uniforms, &scene.mesh, &camera, &mut frame),
-                        false => p.render(&uniforms, &scene.mesh, &camera, &mut frame),
+                    if in_turn {
+                        p.render_in_turn(&uniforms, &scene.mesh, &camera, &mut frame)
+                    } else {
+                        p.render(&uniforms, &scene.mesh, &camera, &mut frame)
                     }
                     (frame, p.stats())
                 };

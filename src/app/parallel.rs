@@ -300,19 +300,6 @@ impl Parallel {
         let helpers = std::mem::take(&mut self.helpers);
         self.prepare_and_draw(inputs, mesh, camera, frame, &helpers);
         self.helpers = helpers;
-        self.stats = self.summed_stats();
-    }
-
-    /// The bands' counts: each band decides about every triangle alike;
-    /// pixels are its own.
-    fn summed_stats(&self) -> Stats {
-        let mut stats = self.pipelines[0].stats();
-        for p in &self.pipelines[1..] {
-            let s = p.stats();
-            stats.pixels_written += s.pixels_written;
-            stats.depth_rejected += s.depth_rejected;
-        }
-        stats
     }
 
     /// The frame [`Parallel::render`] draws, on the calling thread alone: the
@@ -327,11 +314,10 @@ impl Parallel {
         frame: &mut Frame,
     ) {
         self.prepare_and_draw(inputs, mesh, camera, frame, &InTurn);
-        self.stats = self.summed_stats();
     }
 
-    /// The frame's vertices prepared, the bands balanced, and each band drawn,
-    /// the bands side by side as `join` runs them.
+    /// The frame's vertices prepared, the bands balanced, each band drawn (the
+    /// bands side by side as `join` runs them) and their counts summed.
     fn prepare_and_draw(
         &mut self,
         inputs: &Inputs,
@@ -356,6 +342,14 @@ impl Parallel {
         };
         let bands = (&self.ends[..], &mut self.times[..]);
         draw_bands(&mut self.pipelines, bands, frame.target(), prepared, join);
+        // Each band decides about every triangle alike; pixels are its own.
+        let mut stats = self.pipelines[0].stats();
+        for p in &self.pipelines[1..] {
+            let s = p.stats();
+            stats.pixels_written += s.pixels_written;
+            stats.depth_rejected += s.depth_rejected;
+        }
+        self.stats = stats;
     }
 
     /// Ends the bands where each holds about the same work: a row's pixels, and
