@@ -234,8 +234,20 @@ fn shade_loop<S: Stage, I: Interpolation, const LANES: usize>(
         for (c, q) in shaded.iter_mut().zip(kept) {
             *c = colour(q);
         }
-        for (&i, &c) in index.iter().zip(&shaded) {
-            color[i as usize] = c;
+        // Pixels of one row of one triangle, as most are in a large one, go
+        // to the target in one store: each place is written once either way,
+        // so the target's bytes are the same.
+        let first = index[0];
+        let in_a_row = (0..LANES as u32).fold(true, |all, k| {
+            all & (index[k as usize] == first.wrapping_add(k))
+        });
+        match color.get_mut(first as usize..first as usize + LANES) {
+            Some(row) if in_a_row => row.copy_from_slice(&shaded),
+            _ => {
+                for (&i, &c) in index.iter().zip(&shaded) {
+                    color[i as usize] = c;
+                }
+            }
         }
     }
     for (&i, q) in rest {
