@@ -509,7 +509,10 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
         // Rows are handed over only where the groups' rows say how the faces
         // left lie in them.
         let mut handover = handover.zip(grouped.map(|(_, rows)| rows));
-        let mut handed = false;
+        // Once rows are handed over the band is smaller than its runs were
+        // chosen for: then each group's rows say again whether its faces lie
+        // beyond the band, rather than every face being tested.
+        let mut regrouped: Option<&[(f32, f32)]> = None;
         // Placed in the pass that projected them, for every band, if this
         // rasterizer's places can be (the built-in ones'); else here.
         let shared = R::SHARED
@@ -526,12 +529,24 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
             let mut start = run.start;
             while start < run.end {
                 // In pieces while another thread may want rows.
-                let end = match handover {
+                let mut end = match handover {
                     Some(_) => (start + HANDOVER_EVERY).min(run.end),
                     None => run.end,
                 };
-                // Rows handed over leave faces of any run beyond the band.
-                let pass_over = beyond || handed;
+                let mut pass_over = beyond;
+                if let Some(rows) = regrouped {
+                    let group = start / GROUP;
+                    end = end.min((group + 1) * GROUP);
+                    let unbounded = (f32::NEG_INFINITY, f32::INFINITY);
+                    let (low, high) = rows.get(group).copied().unwrap_or(unbounded);
+                    if high < top || low > bottom {
+                        // In full view: drawn by the band its rows are in.
+                        self.stats.drawn += (end - start) as u64;
+                        start = end;
+                        continue;
+                    }
+                    pass_over = low < top || high > bottom;
+                }
                 for (index, face) in mesh.faces[start..end].iter().enumerate() {
                     let index = start + index;
                     if self.cull != Cull::None {
@@ -628,7 +643,7 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
                 other.hand_over(given, start);
                 view = self.view(camera, target, vertices.fit);
                 (top, bottom) = band_rows(&view);
-                handed = true;
+                regrouped = Some(group_rows);
             }
         }
         self.places = places;
