@@ -186,6 +186,53 @@ fn a_long_output_name_is_written() {
 }
 
 #[test]
+fn a_link_another_user_planted_at_the_output_is_not_followed() {
+    if !nobody_can_run() {
+        eprintln!("skipped: not root, no runuser, or nobody cannot reach the binary");
+        return;
+    }
+    let root = temp_dir("planted-at-output");
+    let shared = root.join("shared");
+    fs::create_dir(&shared).unwrap();
+    // /tmp's mode: anyone may write, only the owner may remove.
+    fs::set_permissions(&shared, fs::Permissions::from_mode(0o1777)).unwrap();
+    let victim = root.join("victim");
+    fs::write(&victim, b"precious").unwrap();
+    let script = format!(
+        "ln -s {v} {d}/out.png; ln -s {v} {d}/m.obj",
+        v = victim.display(),
+        d = shared.display()
+    );
+    let planted = Command::new("runuser")
+        .args(["-u", "nobody", "--", "sh", "-c", &script])
+        .status()
+        .unwrap();
+    assert!(planted.success());
+    // Root's own link to the planted one.
+    std::os::unix::fs::symlink("out.png", shared.join("again.png")).unwrap();
+    let path = |name: &str| shared.join(name).to_str().unwrap().to_owned();
+    let (out, again, obj) = (path("out.png"), path("again.png"), path("m.obj"));
+    let o = run(&["depth", "--size", "8x6", "-o", &out]);
+    refused(&o, 1, "is a symbolic link made by another user (uid ");
+    // A chain of links is refused at the first one not to be trusted.
+    let o = run(&["depth", "--size", "8x6", "-o", &again]);
+    refused(&o, 1, "leads through");
+    let o = run(&["export", "-o", &obj]);
+    refused(&o, 1, "not followed");
+    assert_eq!(fs::read(&victim).unwrap(), b"precious");
+    // Nothing else was left in the folder: the links, as they were.
+    let mut left: Vec<_> = fs::read_dir(&shared)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .inspect(|p| assert!(fs::symlink_metadata(p).unwrap().is_symlink()))
+        .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+        .collect();
+    left.sort();
+    assert_eq!(left, ["again.png", "m.obj", "out.png"]);
+    // The user's own links, and root's, are followed as before (tests/output.rs).
+}
+
+#[test]
 fn a_normal_user_gets_a_clean_refusal_in_a_folder_it_cannot_write() {
     if !nobody_can_run() {
         eprintln!("skipped: not root, no runuser, or nobody cannot reach the binary");

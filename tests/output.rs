@@ -1,5 +1,5 @@
 //! Where images go: regular files through a temporary file and a rename, symbolic
-//! links followed to their targets, devices and FIFOs written in place, `-` to
+//! links of the user's own followed to their targets, devices and FIFOs written in place, `-` to
 //! standard output, the format from the name; the same as a normal user.
 
 use crate::common;
@@ -128,6 +128,14 @@ fn links_fifos_and_standard_output_as_a_normal_user() {
     assert_eq!(o.status.code(), Some(1), "{}", err(&o));
     assert_eq!(err(&o).lines().count(), 1, "{}", err(&o));
     assert!(fs::read_dir(&closed).unwrap().next().is_none());
+}
+
+#[test]
+fn dev_stdout_into_a_pipe_is_standard_output() {
+    // /dev/stdout leads to /proc/self/fd/1, whose target ("pipe:[...]") is no path.
+    let o = points_to(Path::new("/dev/stdout"), None);
+    assert!(o.status.success(), "{}", err(&o));
+    assert!(is_png_of(&o.stdout, 8, 6));
 }
 
 #[test]

@@ -6,6 +6,10 @@
 //!   an unpredictable short name (`tempfile`), so a link planted under the name it
 //!   will have cannot redirect the write and a long output name still fits.
 //! - A symbolic link is followed: its target is replaced that way, the link stays.
+//!   Only a link of the user running the command, or of root, is followed: one
+//!   that another user made may have been planted for it, to point at a file
+//!   that user may not write (root writing `/shared/out.png`, a link to
+//!   `/etc/passwd`). Such a path is refused instead.
 //! - Anything else that exists (a device such as /dev/null, a FIFO) is written
 //!   directly, since renaming over it would replace it.
 //! - `-` is standard output. A reader that closes it early (`| head`) stops the
@@ -17,7 +21,7 @@ use crate::pipeline::Frame;
 use std::fmt;
 use std::fs;
 use std::io::{self, BufWriter, Write};
-use std::os::unix::fs::{OpenOptionsExt, PermissionsExt};
+use std::os::unix::fs::{MetadataExt, OpenOptionsExt, PermissionsExt};
 use std::path::{Path, PathBuf};
 
 /// Why an image could not be written; the message names the path.
@@ -140,6 +144,13 @@ fn destination(path: &Path) -> Result<Destination, WriteError> {
         return Ok(Destination::Stdout);
     }
     let target = follow_links(path).map_err(|why| WriteError::new(path, why))?;
+    // A link of /proc (/dev/stdout to /proc/self/fd/1 to "pipe:[...]") names
+    // no path; only the kernel can open what it stands for.
+    if let (Err(_), Ok(m)) = (fs::symlink_metadata(&target), fs::metadata(path)) {
+        if !m.is_file() && !m.is_dir() {
+            return Ok(Destination::Special(path.to_path_buf()));
+        }
+    }
     match fs::metadata(&target) {
         Ok(m) if m.is_dir() => Err(WriteError::new(path, "it is a folder")),
         Ok(m) if !m.is_file() => Ok(Destination::Special(target)),
@@ -262,12 +273,26 @@ fn commit(path: &Path, staged: Staged) -> Result<(), WriteError> {
 }
 
 /// The file a path finally names: symbolic links followed (relative targets from
-/// the link's folder), up to 40 of them.
+/// the link's folder), up to 40 of them, each one the running user's or root's.
 fn follow_links(path: &Path) -> Result<PathBuf, String> {
+    // SAFETY: geteuid has no preconditions and cannot fail.
+    let me = unsafe { libc::geteuid() };
     let mut p = path.to_path_buf();
     for _ in 0..40 {
         match fs::symlink_metadata(&p) {
             Ok(m) if m.file_type().is_symlink() => {
+                if m.uid() != me && m.uid() != 0 {
+                    let which = match p == path {
+                        true => "it is a symbolic link".to_string(),
+                        false => format!("it leads through {}, a symbolic link", p.display()),
+                    };
+                    return Err(format!(
+                        "{which} made by another user (uid {}): not followed, as \
+                         it may have been planted; remove it or name the file it \
+                         points to",
+                        m.uid()
+                    ));
+                }
                 let to = fs::read_link(&p).map_err(|e| e.to_string())?;
                 p = match p.parent() {
                     Some(dir) if to.is_relative() => dir.join(to),
