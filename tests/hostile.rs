@@ -68,6 +68,15 @@ fn nobody_can_run() -> bool {
             .is_ok_and(|s| s.success())
 }
 
+/// [`nobody_can_run`], saying on standard error when the test is skipped.
+fn nobody_can_run_or_say_skipped() -> bool {
+    let can = nobody_can_run();
+    if !can {
+        eprintln!("skipped: not root, no runuser, or nobody cannot reach the binary");
+    }
+    can
+}
+
 /// The last process id the kernel handed out.
 fn last_pid() -> u32 {
     fs::read_to_string("/proc/sys/kernel/ns_last_pid")
@@ -187,8 +196,7 @@ fn a_long_output_name_is_written() {
 
 #[test]
 fn a_link_another_user_planted_at_the_output_is_not_followed() {
-    if !nobody_can_run() {
-        eprintln!("skipped: not root, no runuser, or nobody cannot reach the binary");
+    if !nobody_can_run_or_say_skipped() {
         return;
     }
     let root = temp_dir("planted-at-output");
@@ -234,8 +242,7 @@ fn a_link_another_user_planted_at_the_output_is_not_followed() {
 
 #[test]
 fn a_normal_user_gets_a_clean_refusal_in_a_folder_it_cannot_write() {
-    if !nobody_can_run() {
-        eprintln!("skipped: not root, no runuser, or nobody cannot reach the binary");
+    if !nobody_can_run_or_say_skipped() {
         return;
     }
     let dir = temp_dir("nobody-closed");
