@@ -227,6 +227,23 @@ fn a_link_another_user_planted_at_the_output_is_not_followed() {
     refused(&o, 1, "leads through");
     let o = run(&["export", "-o", &obj]);
     refused(&o, 1, "not followed");
+    // A link to a folder, planted where `all` was told to write its figures.
+    let figures = root.join("figures");
+    fs::create_dir(&figures).unwrap();
+    fs::write(figures.join("fig2-points.png"), b"precious").unwrap();
+    let link = format!("ln -s {} {}/figs", figures.display(), shared.display());
+    let planted = Command::new("runuser")
+        .args(["-u", "nobody", "--", "sh", "-c", &link])
+        .status()
+        .unwrap();
+    assert!(planted.success());
+    let o = run(&["all", "--size", "8x6", "--out", &path("figs")]);
+    refused(&o, 1, "it lies in");
+    assert_eq!(fs::read_dir(&figures).unwrap().count(), 1);
+    assert_eq!(
+        fs::read(figures.join("fig2-points.png")).unwrap(),
+        b"precious"
+    );
     assert_eq!(fs::read(&victim).unwrap(), b"precious");
     // Nothing else was left in the folder: the links, as they were.
     let mut left: Vec<_> = fs::read_dir(&shared)
@@ -236,7 +253,7 @@ fn a_link_another_user_planted_at_the_output_is_not_followed() {
         .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
         .collect();
     left.sort();
-    assert_eq!(left, ["again.png", "m.obj", "out.png"]);
+    assert_eq!(left, ["again.png", "figs", "m.obj", "out.png"]);
     // The user's own links, and root's, are followed as before (tests/output.rs).
 }
 

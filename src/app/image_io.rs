@@ -9,7 +9,8 @@
 //!   Only a link of the user running the command, or of root, is followed: one
 //!   that another user made may have been planted for it, to point at a file
 //!   that user may not write (root writing `/shared/out.png`, a link to
-//!   `/etc/passwd`). Such a path is refused instead.
+//!   `/etc/passwd`). Such a path is refused instead, as is one whose folders
+//!   include such a link.
 //! - Anything else that exists (a device such as /dev/null, a FIFO) is written
 //!   directly, since renaming over it would replace it.
 //! - `-` is standard output. A reader that closes it early (`| head`) stops the
@@ -273,25 +274,32 @@ fn commit(path: &Path, staged: Staged) -> Result<(), WriteError> {
 }
 
 /// The file a path finally names: symbolic links followed (relative targets from
-/// the link's folder), up to 40 of them, each one the running user's or root's.
+/// the link's folder), up to 40 of them, each one, and each folder on the way
+/// that is a link, the running user's or root's.
 fn follow_links(path: &Path) -> Result<PathBuf, String> {
-    // SAFETY: geteuid has no preconditions and cannot fail.
-    let me = unsafe { libc::geteuid() };
+    let refused = |what: String, uid: u32| {
+        format!(
+            "{what} made by another user (uid {uid}): not followed, as it may \
+             have been planted; remove it or name what it points to"
+        )
+    };
     let mut p = path.to_path_buf();
     for _ in 0..40 {
+        // A planted link to a folder redirects the write as well as one to a file.
+        for folder in p.ancestors().skip(1) {
+            if let Some(uid) = fs::symlink_metadata(folder).ok().and_then(untrusted) {
+                let what = format!("it lies in {}, a symbolic link", folder.display());
+                return Err(refused(what, uid));
+            }
+        }
         match fs::symlink_metadata(&p) {
             Ok(m) if m.file_type().is_symlink() => {
-                if m.uid() != me && m.uid() != 0 {
-                    let which = match p == path {
+                if let Some(uid) = untrusted(m.clone()) {
+                    let what = match p == path {
                         true => "it is a symbolic link".to_string(),
                         false => format!("it leads through {}, a symbolic link", p.display()),
                     };
-                    return Err(format!(
-                        "{which} made by another user (uid {}): not followed, as \
-                         it may have been planted; remove it or name the file it \
-                         points to",
-                        m.uid()
-                    ));
+                    return Err(refused(what, uid));
                 }
                 let to = fs::read_link(&p).map_err(|e| e.to_string())?;
                 p = match p.parent() {
@@ -303,6 +311,14 @@ fn follow_links(path: &Path) -> Result<PathBuf, String> {
         }
     }
     Err("too many levels of symbolic links".into())
+}
+
+/// The owner of a symbolic link that neither the running user nor root made.
+fn untrusted(link: fs::Metadata) -> Option<u32> {
+    // SAFETY: geteuid has no preconditions and cannot fail.
+    let me = unsafe { libc::geteuid() };
+    let owner = link.uid();
+    (link.file_type().is_symlink() && owner != me && owner != 0).then_some(owner)
 }
 
 /// The longest side of an image read back by [`read_rgb`].
