@@ -238,6 +238,9 @@ fn a_link_another_user_planted_at_the_output_is_not_followed() {
         .unwrap();
     assert!(planted.success());
     let o = run(&["all", "--size", "8x6", "--out", &path("figs")]);
+    refused(&o, 1, "it is a symbolic link");
+    // Nor is a folder made through it.
+    let o = run(&["all", "--size", "8x6", "--out", &path("figs/new")]);
     refused(&o, 1, "it lies in");
     assert_eq!(fs::read_dir(&figures).unwrap().count(), 1);
     assert_eq!(

@@ -273,6 +273,14 @@ fn commit(path: &Path, staged: Staged) -> Result<(), WriteError> {
         .map_err(|e| WriteError::new(path, e.error.to_string()))
 }
 
+/// Refuses `path` if it is, or passes through, a link another user made (as
+/// every write here does), before anything is made there.
+pub fn refuse_planted_links(path: &Path) -> Result<(), WriteError> {
+    follow_links(path)
+        .map(drop)
+        .map_err(|why| WriteError::new(path, why))
+}
+
 /// The file a path finally names: symbolic links followed (relative targets from
 /// the link's folder), up to 40 of them, each one, and each folder on the way
 /// that is a link, the running user's or root's.

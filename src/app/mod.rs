@@ -391,8 +391,10 @@ pub fn render_all(
 }
 
 /// Creates the folder `dir` (and its parents) if missing; a file in its place
-/// is named as such rather than as the system's "File exists".
+/// is named as such rather than as the system's "File exists". Nothing is made
+/// through a link another user planted ([`image_io`]'s rules).
 pub fn create_folder(dir: &Path) -> Result<(), WriteError> {
+    image_io::refuse_planted_links(dir)?;
     if dir.exists() && !dir.is_dir() {
         return Err(WriteError::new(dir, "not a folder"));
     }
