@@ -103,7 +103,13 @@ fn plant_links(dir: &Path, names: &[&str], victim: &Path) {
             );
         }
     }
-    // The script goes in on standard input: it is longer than one argument may be.
+    run_as_nobody(&script);
+}
+
+/// Runs the shell `script` as `nobody` where the test runs as root (as the
+/// test's user otherwise). The script goes in on standard input: it may be
+/// longer than one argument may be.
+fn run_as_nobody(script: &str) {
     let mut cmd = if nobody_can_run() {
         let mut c = Command::new("runuser");
         c.args(["-u", "nobody", "--", "sh", "-s"]);
@@ -206,16 +212,16 @@ fn a_link_another_user_planted_at_the_output_is_not_followed() {
     fs::set_permissions(&shared, fs::Permissions::from_mode(0o1777)).unwrap();
     let victim = root.join("victim");
     fs::write(&victim, b"precious").unwrap();
-    let script = format!(
-        "ln -s {v} {d}/out.png; ln -s {v} {d}/m.obj",
+    // And a folder of root's, for a link to a folder.
+    let figures = root.join("figures");
+    fs::create_dir(&figures).unwrap();
+    fs::write(figures.join("fig2-points.png"), b"precious").unwrap();
+    run_as_nobody(&format!(
+        "ln -s {v} {d}/out.png; ln -s {v} {d}/m.obj; ln -s {f} {d}/figs",
         v = victim.display(),
+        f = figures.display(),
         d = shared.display()
-    );
-    let planted = Command::new("runuser")
-        .args(["-u", "nobody", "--", "sh", "-c", &script])
-        .status()
-        .unwrap();
-    assert!(planted.success());
+    ));
     // Root's own link to the planted one.
     std::os::unix::fs::symlink("out.png", shared.join("again.png")).unwrap();
     let path = |name: &str| shared.join(name).to_str().unwrap().to_owned();
@@ -228,15 +234,6 @@ fn a_link_another_user_planted_at_the_output_is_not_followed() {
     let o = run(&["export", "-o", &obj]);
     refused(&o, 1, "not followed");
     // A link to a folder, planted where `all` was told to write its figures.
-    let figures = root.join("figures");
-    fs::create_dir(&figures).unwrap();
-    fs::write(figures.join("fig2-points.png"), b"precious").unwrap();
-    let link = format!("ln -s {} {}/figs", figures.display(), shared.display());
-    let planted = Command::new("runuser")
-        .args(["-u", "nobody", "--", "sh", "-c", &link])
-        .status()
-        .unwrap();
-    assert!(planted.success());
     let o = run(&["all", "--size", "8x6", "--out", &path("figs")]);
     refused(&o, 1, "it is a symbolic link");
     // Nor is a folder made through it.

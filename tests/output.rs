@@ -1,6 +1,7 @@
-//! Where images go: regular files through a temporary file and a rename, symbolic
-//! links of the user's own followed to their targets, devices and FIFOs written in place, `-` to
-//! standard output, the format from the name; the same as a normal user.
+//! Where images go: regular files through a temporary file and a rename, the
+//! user's own symbolic links followed to their targets, devices and FIFOs
+//! written in place, `-` to standard output, the format from the name; the same
+//! as a normal user.
 
 use crate::common;
 use common::temp_dir;

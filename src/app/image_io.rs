@@ -145,16 +145,15 @@ fn destination(path: &Path) -> Result<Destination, WriteError> {
         return Ok(Destination::Stdout);
     }
     let target = follow_links(path).map_err(|why| WriteError::new(path, why))?;
-    // A link of /proc (/dev/stdout to /proc/self/fd/1 to "pipe:[...]") names
-    // no path; only the kernel can open what it stands for.
-    if let (Err(_), Ok(m)) = (fs::symlink_metadata(&target), fs::metadata(path)) {
-        if !m.is_file() && !m.is_dir() {
-            return Ok(Destination::Special(path.to_path_buf()));
-        }
-    }
+    let special = |m: &fs::Metadata| !m.is_file() && !m.is_dir();
     match fs::metadata(&target) {
         Ok(m) if m.is_dir() => Err(WriteError::new(path, "it is a folder")),
-        Ok(m) if !m.is_file() => Ok(Destination::Special(target)),
+        Ok(m) if special(&m) => Ok(Destination::Special(target)),
+        // A link of /proc (/dev/stdout to /proc/self/fd/1 to "pipe:[...]")
+        // names no path; only the kernel can open what it stands for.
+        Err(_) if fs::metadata(path).is_ok_and(|m| special(&m)) => {
+            Ok(Destination::Special(path.to_path_buf()))
+        }
         _ => Ok(Destination::File(target)),
     }
 }
@@ -295,14 +294,17 @@ fn follow_links(path: &Path) -> Result<PathBuf, String> {
     for _ in 0..40 {
         // A planted link to a folder redirects the write as well as one to a file.
         for folder in p.ancestors().skip(1) {
-            if let Some(uid) = fs::symlink_metadata(folder).ok().and_then(untrusted) {
+            if let Some(uid) = fs::symlink_metadata(folder)
+                .ok()
+                .and_then(|m| untrusted(&m))
+            {
                 let what = format!("it lies in {}, a symbolic link", folder.display());
                 return Err(refused(what, uid));
             }
         }
         match fs::symlink_metadata(&p) {
             Ok(m) if m.file_type().is_symlink() => {
-                if let Some(uid) = untrusted(m.clone()) {
+                if let Some(uid) = untrusted(&m) {
                     let what = match p == path {
                         true => "it is a symbolic link".to_string(),
                         false => format!("it leads through {}, a symbolic link", p.display()),
@@ -322,7 +324,7 @@ fn follow_links(path: &Path) -> Result<PathBuf, String> {
 }
 
 /// The owner of a symbolic link that neither the running user nor root made.
-fn untrusted(link: fs::Metadata) -> Option<u32> {
+fn untrusted(link: &fs::Metadata) -> Option<u32> {
     // SAFETY: geteuid has no preconditions and cannot fail.
     let me = unsafe { libc::geteuid() };
     let owner = link.uid();

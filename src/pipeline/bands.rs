@@ -122,13 +122,12 @@ impl FaceGroups {
         runs.reserve(self.count()); // in the first frame: no later one allocates
         let mut passed = 0;
         let groups = faces.div_ceil(GROUP).min(rows.len());
-        for (g, &(low, high)) in rows[..groups].iter().enumerate() {
+        for (g, &group_rows) in rows[..groups].iter().enumerate() {
             let faces = g * GROUP..((g + 1) * GROUP).min(faces);
-            if high < top || low > bottom {
+            let Some(beyond) = reaches(group_rows, (top, bottom)) else {
                 passed += faces.len() as u64;
                 continue;
-            }
-            let beyond = low < top || high > bottom;
+            };
             match runs.last_mut() {
                 Some((run, b)) if run.end == faces.start && *b == beyond => run.end = faces.end,
                 _ => runs.push((faces, beyond)),
@@ -143,6 +142,13 @@ impl FaceGroups {
     fn scattered(&self) -> bool {
         self.starts.windows(2).any(|s| s[0] == s[1])
     }
+}
+
+/// Whether a group whose faces lie in rows `(low, high)` reaches beyond a
+/// band's rows `(top, bottom)`, or None if it lies wholly beyond them.
+pub fn reaches((low, high): (f32, f32), (top, bottom): (f32, f32)) -> Option<bool> {
+    let outside = high < top || low > bottom;
+    (!outside).then_some(low < top || high > bottom)
 }
 
 /// Where a band of image rows `band` that still has the faces of `runs` from

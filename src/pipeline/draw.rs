@@ -3,7 +3,7 @@
 //! every pixel goes through the depth test (for stages that have one) and the
 //! stage's pixel shader into the render target.
 
-use super::bands::{chunk_rows, halfway_row, FaceGroups, CHUNK, GROUP};
+use super::bands::{chunk_rows, halfway_row, reaches, FaceGroups, CHUNK, GROUP};
 use super::camera::{Camera, Projection};
 use super::clip::{
     clip_near, clip_rect, clip_segment_near, clip_segment_rect, CameraVertex, Polygon, Rect,
@@ -538,14 +538,14 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
                     let group = start / GROUP;
                     end = end.min((group + 1) * GROUP);
                     let unbounded = (f32::NEG_INFINITY, f32::INFINITY);
-                    let (low, high) = rows.get(group).copied().unwrap_or(unbounded);
-                    if high < top || low > bottom {
+                    let group_rows = rows.get(group).copied().unwrap_or(unbounded);
+                    let Some(beyond) = reaches(group_rows, (top, bottom)) else {
                         // In full view: drawn by the band its rows are in.
                         self.stats.drawn += (end - start) as u64;
                         start = end;
                         continue;
-                    }
-                    pass_over = low < top || high > bottom;
+                    };
+                    pass_over = beyond;
                 }
                 for (index, face) in mesh.faces[start..end].iter().enumerate() {
                     let index = start + index;
