@@ -138,7 +138,23 @@ fn bad_files_are_one_line_errors() {
     let mut cases: Vec<(&str, Vec<u8>, &str)> = [
         ("points", "p 1\nl 1 2\nf 1 2\n", "no faces"),
         ("number", "v 1 x 0\n", "line 4: position parse error"),
-        ("face", "f 1 2 x\n", "line 4: face parse error"),
+        (
+            "face",
+            "f 1 2 x\n",
+            "line 4: face corner 'x' is not v, v/vt, v//vn or v/vt/vn",
+        ),
+        (
+            "slashes",
+            "f 1 2 3/3/3/3\n",
+            "line 4: face corner '3/3/3/3' is not",
+        ),
+        ("comment", "f 1 2 3#\n", "line 4: face corner '3#' is not"),
+        (
+            "huge",
+            "f 1 2 99999999999999999999\n",
+            "line 4: index 99999999999999999999 is out of range",
+        ),
+        ("line", "l 1 x\nf 1 2 3\n", "line 4: face corner 'x' is not"),
         (
             "range",
             "f 1 2 3\nf 1 2 4\nf 3 2 1\n",

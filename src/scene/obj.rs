@@ -622,10 +622,21 @@ impl<R: BufRead> Lines<R> {
         let mut n = 0;
         for corner in corners {
             n += 1;
-            // position/texture/normal; a negative index counts back.
+            // position/texture/normal; a negative index counts back. tobj
+            // takes nothing else (its "face parse error"): said here with the
+            // corner.
+            if corner.split('/').skip(3).any(|index| !index.is_empty()) {
+                return Err(not_a_corner(corner));
+            }
             for (k, index) in corner.split('/').take(3).enumerate() {
+                if index.is_empty() {
+                    continue; // v//vn, v/vt/
+                }
                 let Ok(i) = index.parse::<i64>() else {
-                    continue;
+                    return Err(match whole_number(index) {
+                        true => format!("index {index} is out of range"),
+                        false => not_a_corner(corner),
+                    });
                 };
                 if i == 0
                     || i > u32::MAX as i64
@@ -646,6 +657,16 @@ impl<R: BufRead> Lines<R> {
         }
         Ok(())
     }
+}
+
+fn not_a_corner(corner: &str) -> String {
+    format!("face corner '{corner}' is not v, v/vt, v//vn or v/vt/vn (whole-number indices)")
+}
+
+/// Digits, after at most one sign.
+fn whole_number(text: &str) -> bool {
+    let digits = text.strip_prefix(['-', '+']).unwrap_or(text);
+    !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit())
 }
 
 impl<R: BufRead> Read for Lines<R> {
