@@ -710,6 +710,35 @@ fn rasterlab(args: &[&str]) -> Output {
         .unwrap()
 }
 
+/// A flat colour is what a camera against a single wall draws in any stage:
+/// not explained by fitting one there (a grey image was once "Figure 6 at light
+/// power 0", every pixel matching).
+#[test]
+fn one_flat_colour_is_not_a_lab_3_image() {
+    use rasterlab::app::image_io::write_image;
+    let dir = temp_dir("check-flat");
+    for (name, colour) in [("grey", 0x0080_8080u32), ("wall", 0x0055_5b93)] {
+        let mut frame = Frame::new(500, 500);
+        frame.color.fill(colour);
+        let path = dir.join(format!("{name}.png"));
+        write_image(&frame, &path).unwrap();
+        let o = rasterlab(&["check", path.to_str().unwrap()]);
+        let text = String::from_utf8_lossy(&o.stdout);
+        assert_eq!(o.status.code(), Some(1), "{name}: {text}");
+        let [r, g, b] = [colour >> 16, colour >> 8 & 255, colour & 255];
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(
+            lines[0],
+            format!("Note: the image is one colour, ({r}, {g}, {b}), in 99 % or more of its pixels: a camera against a single wall draws that in any stage, so no camera was fitted to it"),
+            "{name}"
+        );
+        assert!(
+            lines[1].starts_with(&format!("{} is not a lab 3 image", path.display())),
+            "{name}: {text}"
+        );
+    }
+}
+
 /// Asserts the command failed with `code` and one line on stderr, equal to `line`.
 fn one_line_error(args: &[&str], code: i32, line: &str) {
     let o = rasterlab(args);

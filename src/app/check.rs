@@ -174,6 +174,19 @@ fn remove_gamma(frame: &Frame) -> Frame {
     out
 }
 
+/// The colour of 99 % or more of the pixels (within 2/255, each channel), if
+/// the image is one colour other than black (a black one has no walls to place
+/// either way).
+fn one_colour(frame: &Frame) -> Option<[u8; 3]> {
+    let rgb = |c: u32| [(c >> 16) as u8, (c >> 8) as u8, c as u8];
+    let centre = (frame.height / 2 * frame.width + frame.width / 2) as usize;
+    let colour = rgb(*frame.color.get(centre)?);
+    let near = |c: &u32| rgb(*c).iter().zip(colour).all(|(&a, b)| a.abs_diff(b) <= 2);
+    let alike = frame.color.iter().filter(|c| near(c)).count();
+    let black = colour.iter().all(|&c| c < 8);
+    (!black && alike * 100 >= frame.color.len() * 99).then_some(colour)
+}
+
 /// Whether `check` found a lab 3 image.
 fn lab3(check: &ImageCheck) -> bool {
     check.fitted.is_some()
@@ -296,7 +309,10 @@ fn check_screenshot(
         .iter()
         .filter(|&&c| c & 0x00f8_f8f8 != 0)
         .count();
-    let has_walls = lit * 20 > observed.color.len();
+    // One colour in nearly every pixel: a camera against a single wall draws
+    // that in any stage, so no camera is fitted to it.
+    let flat = one_colour(&observed);
+    let has_walls = lit * 20 > observed.color.len() && flat.is_none();
     let walls_before = match has_walls {
         true => walls_in_place(&observed, &setup.camera),
         false => 0.0,
@@ -447,6 +463,11 @@ fn check_screenshot(
         check = again;
         check.notes.push(format!(
             "--stage {name} does not fit this image: the best {name} explanation has no direct light at all (P = 0); it was checked against every stage instead"
+        ));
+    }
+    if let Some([r, g, b]) = flat {
+        check.notes.insert(0, format!(
+            "the image is one colour, ({r}, {g}, {b}), in 99 % or more of its pixels: a camera against a single wall draws that in any stage, so no camera was fitted to it"
         ));
     }
     if blended {
