@@ -219,6 +219,8 @@ fn run(cli: Cli) -> Result<(), Failure> {
             let name = figure.default_file().replace(".png", ".gif");
             let out = a.out.clone().unwrap_or_else(|| PathBuf::from(name));
             let (scene, settings) = parts.resolve()?;
+            let (w, h) = (settings.camera.width, settings.camera.height);
+            app::animation_size(w, h).map_err(Failure::Usage)?;
             let delay = a.delay as u32;
             let frames = app::animate_to_file(figure, scene.model(), &settings, &out, delay)?;
             eprintln!("wrote {} ({frames} frames)", app::image_io::describe(&out));

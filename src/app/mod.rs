@@ -269,6 +269,21 @@ pub fn build_up<'a>(
     Ok(frames)
 }
 
+/// The largest side `animate` draws: its frames are all kept (8 bytes a pixel
+/// with depth) and each encoded on its own, about a second for 30 frames at
+/// 1024x1024 here, so 16384x16384 would take minutes and 60 GB.
+pub const MAX_ANIMATE_SIDE: u32 = 2048;
+
+/// Whether `animate` draws a `width` x `height` image; if not, why.
+pub fn animation_size(width: u32, height: u32) -> Result<(), String> {
+    match width.max(height) <= MAX_ANIMATE_SIDE {
+        true => Ok(()),
+        false => Err(format!(
+            "animate draws at most {MAX_ANIMATE_SIDE} pixels a side, not {width}x{height} (it keeps and encodes every frame); a stage command draws the finished image at that size"
+        )),
+    }
+}
+
 /// `rasterlab animate`: [`build_up`] of `mesh` written as a GIF that
 /// shows each triangle for `delay_ms` and the finished image for two seconds.
 pub fn animate_to_file<'a>(
