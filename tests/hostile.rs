@@ -7,7 +7,7 @@ use crate::common;
 use common::temp_dir;
 use std::fs;
 use std::os::unix::fs::PermissionsExt;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
@@ -130,16 +130,23 @@ fn run_as_nobody(script: &str) {
     assert!(child.wait().unwrap().success());
 }
 
+/// In `root`: a folder `shared` with `mode`, where links are planted, and a
+/// file `victim` (root's, "precious") that they point to.
+fn shared_folder_and_victim(root: &Path, mode: u32) -> (PathBuf, PathBuf) {
+    let shared = root.join("shared");
+    fs::create_dir(&shared).unwrap();
+    fs::set_permissions(&shared, fs::Permissions::from_mode(mode)).unwrap();
+    let victim = root.join("victim");
+    fs::write(&victim, b"precious").unwrap();
+    fs::set_permissions(&victim, fs::Permissions::from_mode(0o644)).unwrap();
+    (shared, victim)
+}
+
 #[test]
 fn links_planted_for_the_next_process_ids_are_never_written_through() {
     let root = temp_dir("planted");
     // A folder anyone may write to, without the sticky bit: the attack's ground.
-    let shared = root.join("shared");
-    fs::create_dir(&shared).unwrap();
-    fs::set_permissions(&shared, fs::Permissions::from_mode(0o777)).unwrap();
-    let victim = root.join("victim");
-    fs::write(&victim, b"precious").unwrap();
-    fs::set_permissions(&victim, fs::Permissions::from_mode(0o644)).unwrap();
+    let (shared, victim) = shared_folder_and_victim(&root, 0o777);
     let figures = shared.join("figures");
     let report = shared.join("report");
     fs::create_dir(&figures).unwrap();
@@ -206,12 +213,8 @@ fn a_link_another_user_planted_at_the_output_is_not_followed() {
         return;
     }
     let root = temp_dir("planted-at-output");
-    let shared = root.join("shared");
-    fs::create_dir(&shared).unwrap();
     // /tmp's mode: anyone may write, only the owner may remove.
-    fs::set_permissions(&shared, fs::Permissions::from_mode(0o1777)).unwrap();
-    let victim = root.join("victim");
-    fs::write(&victim, b"precious").unwrap();
+    let (shared, victim) = shared_folder_and_victim(&root, 0o1777);
     // And a folder of root's, for a link to a folder.
     let figures = root.join("figures");
     fs::create_dir(&figures).unwrap();

@@ -11,6 +11,7 @@ use crate::measure::check::locate::{
 use crate::measure::check::pose::{fit_pose, walls_in_place, MIN_POSE_SCORE};
 use crate::measure::check::rows::{check_rows, parse_rows_skipping, RowsCheck};
 use crate::measure::heat::heat_map_picture;
+use crate::pipeline::target::unpack;
 use crate::pipeline::StageName;
 use crate::pipeline::{Camera, Frame};
 use crate::scene::input::{read_image_with_format, read_text_bounded, read_text_file, ImageLimit};
@@ -178,10 +179,14 @@ fn remove_gamma(frame: &Frame) -> Frame {
 /// the image is one colour other than black (a black one has no walls to place
 /// either way).
 fn one_colour(frame: &Frame) -> Option<[u8; 3]> {
-    let rgb = |c: u32| [(c >> 16) as u8, (c >> 8) as u8, c as u8];
     let centre = (frame.height / 2 * frame.width + frame.width / 2) as usize;
-    let colour = rgb(*frame.color.get(centre)?);
-    let near = |c: &u32| rgb(*c).iter().zip(colour).all(|(&a, b)| a.abs_diff(b) <= 2);
+    let colour = unpack(*frame.color.get(centre)?);
+    let near = |&c: &u32| {
+        unpack(c)
+            .iter()
+            .zip(colour)
+            .all(|(&a, b)| a.abs_diff(b) <= 2)
+    };
     let alike = frame.color.iter().filter(|c| near(c)).count();
     let black = colour.iter().all(|&c| c < 8);
     (!black && alike * 100 >= frame.color.len() * 99).then_some(colour)
