@@ -142,7 +142,11 @@ fn bad_arguments_are_one_line_usage_errors() {
     usage_error(&["view", "--fps", "-1"], "from 0 to 1000, got '-1'");
     usage_error(&["view", "--frames", "0"], "from 1 to");
     usage_error(&["view", "--keys", "8"], "unknown key '8'");
-    usage_error(&["points", "-o", "x.jpg"], ".png or .bmp");
+    usage_error(&["points", "-o", "x.jpg"], "'x.jpg': images are written as PNG or BMP, not .jpg; name the file .png or .bmp, or give - for standard output");
+    usage_error(
+        &["points", "-o", "x"],
+        "'x': its name has no ending to choose the image format by; name the file .png or .bmp",
+    );
     usage_error(
         &["pixel-light", "--affine", "--interpolation", "perspective"],
         "cannot be used with",

@@ -171,8 +171,6 @@ fn bad_files_are_one_line_errors() {
     .map(|(name, rest, expected)| (name, format!("{tri}{rest}").into_bytes(), expected))
     .into();
     cases.push(("nothing", vec![], "no faces"));
-    let not_utf8 = [tri.as_bytes(), b"# \xff\nf 1 2 3\n"].concat();
-    cases.push(("utf8", not_utf8, "line 4"));
     // 201 polygons of 50 000 corners: 10 049 799 triangles.
     let polygon = format!("f{}\n", " 1".repeat(50_000));
     let big = format!("{tri}{}", polygon.repeat(201));
@@ -247,6 +245,27 @@ fn bad_files_are_one_line_errors() {
             "{}: material library cased.mtl is not there: read {} instead",
             path.display(),
             dir.0.join("Cased.MTL").display()
+        )]
+    );
+}
+
+#[test]
+fn text_that_is_not_utf8_is_read_as_latin1() {
+    let dir = TempDir::new("latin1");
+    // Written on Windows: a comment and a material name in its Western
+    // encoding in the OBJ (0xE9 is é), the same name in UTF-8 in the MTL.
+    dir.file("m.mtl", "newmtl Mat\u{e9}riau\nKd 1 0 0\n");
+    let obj: &[u8] = b"# Cr\xe9\xe9 par 3ds Max\nmtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl Mat\xe9riau\nf 1 2 3\ng Bo\xeete\nf 1 2 3\n";
+    let path = dir.file("m.obj", obj);
+    let (mesh, _, warnings) = rasterlab::scene::obj::read_obj(&path).unwrap();
+    let colors: Vec<Vec3> = mesh.triangles().map(|t| t.color).collect();
+    assert_eq!(colors, [Vec3::X, Vec3::X]);
+    // The comment needs no warning; the name and the group do.
+    assert_eq!(
+        warnings,
+        [format!(
+            "{}: line 6: not UTF-8: read as Latin-1, a character a byte (and 1 more such lines)",
+            path.display()
         )]
     );
 }

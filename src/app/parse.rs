@@ -136,8 +136,15 @@ pub fn image_path(s: &str) -> Result<std::path::PathBuf, String> {
     if s == "-" || special || crate::app::image_io::ImageFormat::of(&path).is_some() {
         Ok(path)
     } else {
+        let why = match path.extension() {
+            Some(ext) => format!(
+                "images are written as PNG or BMP, not .{}",
+                ext.to_string_lossy()
+            ),
+            None => "its name has no ending to choose the image format by".to_string(),
+        };
         Err(format!(
-            "cannot tell the image format of '{s}': name the file .png or .bmp, or give - for standard output"
+            "'{s}': {why}; name the file .png or .bmp, or give - for standard output"
         ))
     }
 }

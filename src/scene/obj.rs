@@ -510,6 +510,8 @@ struct Lines<R> {
     short_faces: (usize, usize),
     /// Each material name `usemtl` gives (the first [`MAX_NAMES`]), with its first line.
     usemtl: Vec<(String, usize)>,
+    /// Lines other than comments read as Latin-1: the first one's number, and how many.
+    latin1: (usize, usize),
 }
 
 /// How many material names are remembered for the warnings.
@@ -527,7 +529,23 @@ impl<R: BufRead> Lines<R> {
             largest: [(0, 0); 3],
             short_faces: (0, 0),
             usemtl: Vec::new(),
+            latin1: (0, 0),
         }
+    }
+
+    /// A line that is not UTF-8 read as Latin-1, a character a byte: files
+    /// written on Windows carry comments and names in its Western encoding,
+    /// whose letters are Latin-1's, and a name so read in both the OBJ and its
+    /// MTL still matches (an MTL's `é` in UTF-8 is the OBJ's byte 0xE9 read so).
+    fn latin1(&mut self, bytes: Vec<u8>) -> String {
+        let line: String = bytes.into_iter().map(char::from).collect();
+        if !line.trim_start().starts_with('#') {
+            if self.latin1.1 == 0 {
+                self.latin1.0 = self.line + 1;
+            }
+            self.latin1.1 += 1;
+        }
+        line
     }
 
     /// Which line has an index past the end of its list, and what it is.
@@ -562,6 +580,16 @@ impl<R: BufRead> Lines<R> {
             };
             out.push(format!(
                 "line {line}: a face needs at least three corners: left out{more}"
+            ));
+        }
+        let (line, n) = self.latin1;
+        if n > 0 {
+            let more = match n {
+                1 => String::new(),
+                n => format!(" (and {} more such lines)", n - 1),
+            };
+            out.push(format!(
+                "line {line}: not UTF-8: read as Latin-1, a character a byte{more}"
             ));
         }
         out
@@ -697,7 +725,7 @@ impl<R: BufRead> BufRead for Lines<R> {
             Ok(n) if n > MAX_LINE_BYTES => Err(format!(
                 "longer than {MAX_LINE_BYTES} bytes: not a model file, or a broken one"
             )),
-            Ok(_) => String::from_utf8(bytes).map_err(|_| "not UTF-8 text".to_string()),
+            Ok(_) => Ok(String::from_utf8(bytes).unwrap_or_else(|e| self.latin1(e.into_bytes()))),
         };
         let line = match line {
             Ok(line) => line,
