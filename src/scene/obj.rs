@@ -572,26 +572,24 @@ impl<R: BufRead> Lines<R> {
                 ));
             }
         }
-        let (line, n) = self.short_faces;
-        if n > 0 {
+        // The first line of a kind, and how many more there were.
+        let first = |(line, n): (usize, usize), what: &str, such: &str| {
             let more = match n {
                 1 => String::new(),
-                n => format!(" (and {} more such faces)", n - 1),
+                n => format!(" (and {} more such {such})", n - 1),
             };
-            out.push(format!(
-                "line {line}: a face needs at least three corners: left out{more}"
-            ));
-        }
-        let (line, n) = self.latin1;
-        if n > 0 {
-            let more = match n {
-                1 => String::new(),
-                n => format!(" (and {} more such lines)", n - 1),
-            };
-            out.push(format!(
-                "line {line}: not UTF-8: read as Latin-1, a character a byte{more}"
-            ));
-        }
+            (n > 0).then(|| format!("line {line}: {what}{more}"))
+        };
+        out.extend(first(
+            self.short_faces,
+            "a face needs at least three corners: left out",
+            "faces",
+        ));
+        out.extend(first(
+            self.latin1,
+            "not UTF-8: read as Latin-1, a character a byte",
+            "lines",
+        ));
         out
     }
 
