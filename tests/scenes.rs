@@ -271,6 +271,23 @@ fn text_that_is_not_utf8_is_read_as_latin1() {
 }
 
 #[test]
+fn a_byte_order_mark_and_a_one_number_colour_are_read() {
+    let dir = TempDir::new("bom");
+    // As Notepad saves UTF-8: a byte-order mark before the first keyword.
+    dir.file("m.mtl", "\u{feff}newmtl a\nKd 1 0 0\nnewmtl b\nKd 0.25\n");
+    let path = dir.file(
+        "m.obj",
+        "\u{feff}mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\nusemtl b\nf 1 2 3\n",
+    );
+    let (mesh, _, warnings) = rasterlab::scene::obj::read_obj(&path).unwrap();
+    let colors: Vec<Vec3> = mesh.triangles().map(|t| t.color).collect();
+    assert_eq!(colors, [Vec3::X, Vec3::splat(0.25)]);
+    assert!(warnings.is_empty(), "{warnings:?}");
+    let path = dir.file("v.obj", "\u{feff}v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    assert_eq!(load_obj(&path).unwrap().positions.len(), 3);
+}
+
+#[test]
 fn polygons_are_fans_from_their_first_vertex_before_the_half_turn() {
     let dir = TempDir::new("fan");
     let path = dir.file(

@@ -42,7 +42,8 @@ pub fn open_regular(path: &Path) -> Result<File, String> {
     Err(format!("{what}, not a regular file: refused"))
 }
 
-/// The whole of `reader` as UTF-8 text, refused past `max_bytes`.
+/// The whole of `reader` as text, refused past `max_bytes`: UTF-8, or UTF-16
+/// after its byte-order mark (what Windows PowerShell 5 writes for `> file`).
 pub fn read_text_bounded(reader: impl Read, max_bytes: u64) -> Result<String, String> {
     let mut bytes = Vec::new();
     reader
@@ -52,7 +53,20 @@ pub fn read_text_bounded(reader: impl Read, max_bytes: u64) -> Result<String, St
     if bytes.len() as u64 > max_bytes {
         return Err(format!("longer than {max_bytes} bytes: refused"));
     }
-    String::from_utf8(bytes).map_err(|_| "not UTF-8 text".into())
+    let utf16 = |pair: fn([u8; 2]) -> u16| {
+        let units = bytes[2..].chunks(2).map(|c| match c {
+            &[a, b] => Ok(pair([a, b])),
+            _ => Err(()),
+        });
+        let units: Result<Vec<u16>, ()> = units.collect();
+        units.ok().and_then(|u| String::from_utf16(&u).ok())
+    };
+    match bytes.get(..2) {
+        Some([0xff, 0xfe]) => utf16(u16::from_le_bytes),
+        Some([0xfe, 0xff]) => utf16(u16::from_be_bytes),
+        _ => String::from_utf8(bytes).ok(),
+    }
+    .ok_or_else(|| "not UTF-8 or UTF-16 text".into())
 }
 
 /// The text file at `path`, refused past `max_bytes`.
@@ -155,9 +169,19 @@ mod tests {
             "longer than 4 bytes: refused"
         );
         assert_eq!(
-            read_text_bounded(&[0xff, 0xfe][..], 4).unwrap_err(),
-            "not UTF-8 text"
+            read_text_bounded(&[0xff, 0xff][..], 4).unwrap_err(),
+            "not UTF-8 or UTF-16 text"
         );
+        // UTF-16 after its byte-order mark, either way round; not an odd byte.
+        assert_eq!(
+            read_text_bounded(&[0xff, 0xfe, b'1', 0][..], 4).unwrap(),
+            "1"
+        );
+        assert_eq!(
+            read_text_bounded(&[0xfe, 0xff, 0, b'1'][..], 4).unwrap(),
+            "1"
+        );
+        assert!(read_text_bounded(&[0xff, 0xfe, b'1'][..], 4).is_err());
     }
 
     #[test]

@@ -489,6 +489,17 @@ enum Kind {
     Mtl,
 }
 
+/// An MTL colour given by one number, `Kd 0.5`, which the format allows
+/// (green and blue then equal red), written out as three for tobj.
+fn one_number_colour(line: &str) -> Option<String> {
+    let mut words = line.split_whitespace();
+    let first = words.next()?;
+    let value = words.next()?;
+    let colour = matches!(first, "Ka" | "Kd" | "Ks" | "Ke");
+    (colour && words.next().is_none() && value.parse::<f32>().is_ok())
+        .then(|| format!("{first} {value} {value} {value}\n"))
+}
+
 /// The file as tobj reads it, a line at a time: counts the lines, so that errors
 /// can name one, and stops tobj, with the reason in `stop`, at a line it must not
 /// read on: a number that is NaN or infinite, an index that tobj's arithmetic
@@ -632,7 +643,7 @@ impl<R: BufRead> Lines<R> {
                 }
             }
             (Kind::Mtl, "Ka" | "Kd" | "Ks" | "Ke") if words.clone().count() < 3 => {
-                return Err(format!("{first} needs three numbers"))
+                return Err(format!("{first} needs three numbers (or one, for a grey)"))
             }
             (Kind::Mtl, "Ka" | "Kd" | "Ks" | "Ke") => {}
             _ => return Ok(()),
@@ -726,11 +737,20 @@ impl<R: BufRead> BufRead for Lines<R> {
             Ok(_) => Ok(String::from_utf8(bytes).unwrap_or_else(|e| self.latin1(e.into_bytes()))),
         };
         let line = match line {
+            // A byte-order mark, as Notepad saves UTF-8, would hide the first
+            // line's keyword from tobj (a vertex or `newmtl` lost silently).
+            Ok(line) if self.line == 0 && line.starts_with('\u{feff}') => {
+                line['\u{feff}'.len_utf8()..].to_string()
+            }
             Ok(line) => line,
             Err(why) => {
                 self.stop = Some(format!("line {number}: {why}"));
                 return Err(io::Error::other(why));
             }
+        };
+        let line = match self.kind {
+            Kind::Mtl => one_number_colour(&line).unwrap_or(line),
+            Kind::Obj => line,
         };
         if !line.is_empty() {
             self.line = number;
