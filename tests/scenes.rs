@@ -288,6 +288,47 @@ fn a_byte_order_mark_and_a_one_number_colour_are_read() {
 }
 
 #[test]
+fn mtllib_names_several_libraries_or_one_with_spaces_and_tga_textures_load() {
+    let dir = TempDir::new("mtllib");
+    let tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n";
+    dir.file("a1.mtl", "newmtl a\nKd 1 0 0\n");
+    dir.file("a2.mtl", "newmtl b\nKd 0 1 0\nnewmtl a\nKd 0 0 1\n");
+    let path = dir.file(
+        "two.obj",
+        format!("mtllib a1.mtl a2.mtl missing.mtl\n{tri}usemtl b\nf 1 2 3\nusemtl a\nf 1 2 3\n"),
+    );
+    let (mesh, _, warnings) = rasterlab::scene::obj::read_obj(&path).unwrap();
+    let colors: Vec<Vec3> = mesh.triangles().map(|t| t.color).collect();
+    // The first library to define a name gives its material.
+    assert_eq!(colors, [Vec3::Y, Vec3::X]);
+    assert_eq!(
+        warnings,
+        [format!(
+            "{}: material library missing.mtl is not there: its materials are left out",
+            path.display()
+        )]
+    );
+    // Blender names the library after the model, spaces and all; a TGA
+    // texture (no mark of its own: read by its name) of one blue texel.
+    let tga = [
+        0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 1, 0, 24, 0, 255, 0, 0,
+    ];
+    dir.file("wood.TGA", tga);
+    dir.file("my model.mtl", "newmtl w\nKd 1 1 1\nmap_Kd wood.TGA\n");
+    let path = dir.file(
+        "my model.obj",
+        format!("mtllib my model.mtl\n{tri}usemtl w\nf 1/1 2/2 3/3\n"),
+    );
+    let (mesh, maps, warnings) = rasterlab::scene::obj::read_obj(&path).unwrap();
+    assert!(warnings.is_empty(), "{warnings:?}");
+    assert_eq!(mesh.triangles().next().unwrap().color, Vec3::ONE);
+    assert_eq!(maps.images.len(), 1);
+    let nearest = rasterlab::extensions::texture::Filter::Nearest;
+    let texel = maps.images[0].sample(Vec2::splat(0.5), nearest);
+    assert_eq!(texel, Vec3::Z);
+}
+
+#[test]
 fn polygons_are_fans_from_their_first_vertex_before_the_half_turn() {
     let dir = TempDir::new("fan");
     let path = dir.file(

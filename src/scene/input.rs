@@ -83,8 +83,8 @@ pub struct ImageLimit {
     pub what: &'static str,
 }
 
-/// The image at `path` (PNG, JPEG, BMP or GIF, by its content), refused from
-/// its header when a side is longer than `limit` allows.
+/// The image at `path` (PNG, JPEG, BMP or GIF by its content, TGA by its
+/// name), refused from its header when a side is longer than `limit` allows.
 pub fn read_image(path: &Path, limit: ImageLimit) -> Result<image::DynamicImage, String> {
     read_image_with_format(path, limit).map(|(image, _)| image)
 }
@@ -106,20 +106,32 @@ pub fn read_image_with_format(
     limits.max_image_height = Some(limit.max_side);
     // Room for the decoded image at 16 bits a channel with alpha, and no more.
     limits.max_alloc = Some(w as u64 * h as u64 * 8 + (1 << 20));
-    let mut reader = image::ImageReader::new(BufReader::new(open_regular(path)?))
-        .with_guessed_format()
-        .map_err(|e| format!("cannot read: {e}"))?;
+    let mut reader = image_reader(path)?;
     reader.limits(limits);
     let format = reader.format();
     let image = reader.decode().map_err(|e| damaged(format, e))?;
     Ok((image, format))
 }
 
-/// An image's width and height, from its header alone.
-pub fn image_size(path: &Path) -> Result<(u32, u32), String> {
-    let reader = image::ImageReader::new(BufReader::new(open_regular(path)?))
+/// A reader of the image at `path`, its format known from its first bytes,
+/// or for a TGA, which has no mark of its own, from its name (models' textures
+/// often are).
+fn image_reader(path: &Path) -> Result<image::ImageReader<BufReader<std::fs::File>>, String> {
+    let mut reader = image::ImageReader::new(BufReader::new(open_regular(path)?))
         .with_guessed_format()
         .map_err(|e| format!("cannot read: {e}"))?;
+    let tga = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("tga"));
+    if reader.format().is_none() && tga {
+        reader.set_format(image::ImageFormat::Tga);
+    }
+    Ok(reader)
+}
+
+/// An image's width and height, from its header alone.
+pub fn image_size(path: &Path) -> Result<(u32, u32), String> {
+    let reader = image_reader(path)?;
     match reader.format() {
         // What a text file or a truncated header gets.
         None => {
@@ -131,7 +143,8 @@ pub fn image_size(path: &Path) -> Result<(u32, u32), String> {
             image::ImageFormat::Png
             | image::ImageFormat::Jpeg
             | image::ImageFormat::Bmp
-            | image::ImageFormat::Gif,
+            | image::ImageFormat::Gif
+            | image::ImageFormat::Tga,
         ) => {}
         // Other formats are not built in.
         Some(f) => {

@@ -82,16 +82,41 @@ pub fn read_obj(path: &Path) -> Result<(Mesh, Maps, Vec<String>), String> {
         // faces are drawn grey, as the usemtl warnings say (models are often
         // shared without theirs).
         let mut warnings = mtl_warnings.borrow_mut();
-        let Some(found) = file_beside(dir, &name, "material library", &mut warnings) else {
-            warnings.push(format!(
-                "material library {name} is not there: its materials are left out"
-            ));
-            return Ok((Vec::new(), HashMap::new()));
-        };
-        load_mtl(&found).map_err(|why| {
-            mtl_error.borrow_mut().get_or_insert(why);
-            tobj::LoadError::GenericFailure
-        })
+        let what = "material library";
+        // The format lets `mtllib` name several files; a name with spaces in
+        // it, as Blender writes a file's, is one.
+        let libraries: Vec<(&str, Option<PathBuf>)> =
+            match file_beside(dir, &name, what, &mut warnings) {
+                Some(found) => vec![(&name, Some(found))],
+                None => {
+                    let parts: Vec<_> = name
+                        .split_whitespace()
+                        .map(|part| (part, file_beside(dir, part, what, &mut warnings)))
+                        .collect();
+                    match parts.iter().any(|(_, found)| found.is_some()) {
+                        true => parts,
+                        false => vec![(&name, None)],
+                    }
+                }
+            };
+        let (mut materials, mut names) = (Vec::new(), HashMap::new());
+        for (part, found) in libraries {
+            let Some(found) = found else {
+                warnings.push(format!(
+                    "{what} {part} is not there: its materials are left out"
+                ));
+                continue;
+            };
+            let (more, more_names) = load_mtl(&found).map_err(|why| {
+                mtl_error.borrow_mut().get_or_insert(why);
+                tobj::LoadError::GenericFailure
+            })?;
+            for (material, index) in more_names {
+                names.entry(material).or_insert(materials.len() + index);
+            }
+            materials.extend(more);
+        }
+        Ok((materials, names))
     });
     let (models, materials) = loaded.map_err(|e| {
         use tobj::LoadError::*;
