@@ -245,4 +245,10 @@ fn map_kd_options_are_read_by_the_mtl_format() {
     );
     assert_eq!(m.ignored, ["-clamp", "-mm"]);
     assert_eq!(TextureMap::parse("plain.png").file, "plain.png");
+    let quoted = TextureMap::parse("-s 2 \"brick wall.png\"");
+    assert_eq!(
+        (quoted.file.as_str(), quoted.scale.x),
+        ("brick wall.png", 2.0)
+    );
+    assert_eq!(TextureMap::parse("\"\"").file, "\"\"");
 }

@@ -78,6 +78,7 @@ pub fn read_obj(path: &Path) -> Result<(Mesh, Maps, Vec<String>), String> {
     };
     let loaded = tobj::load_obj_buf(&mut reader, &options, |name| {
         let name = name.to_string_lossy();
+        let name = unquoted(&name);
         // A library that is not there leaves its materials undefined: their
         // faces are drawn grey, as the usemtl warnings say (models are often
         // shared without theirs).
@@ -86,8 +87,8 @@ pub fn read_obj(path: &Path) -> Result<(Mesh, Maps, Vec<String>), String> {
         // The format lets `mtllib` name several files; a name with spaces in
         // it, as Blender writes a file's, is one.
         let libraries: Vec<(&str, Option<PathBuf>)> =
-            match file_beside(dir, &name, what, &mut warnings) {
-                Some(found) => vec![(&name, Some(found))],
+            match file_beside(dir, name, what, &mut warnings) {
+                Some(found) => vec![(name, Some(found))],
                 None => {
                     let parts: Vec<_> = name
                         .split_whitespace()
@@ -95,7 +96,7 @@ pub fn read_obj(path: &Path) -> Result<(Mesh, Maps, Vec<String>), String> {
                         .collect();
                     match parts.iter().any(|(_, found)| found.is_some()) {
                         true => parts,
-                        false => vec![(&name, None)],
+                        false => vec![(name, None)],
                     }
                 }
             };
@@ -221,7 +222,7 @@ impl TextureMap {
                 rest = rest[rest.find(w).map_or(0, |i| i + w.len())..].trim_start();
             }
         }
-        map.file = rest.trim_end().to_string();
+        map.file = unquoted(rest.trim_end()).to_string();
         map
     }
 }
@@ -512,6 +513,13 @@ pub fn obj_text(mesh: &Mesh, mtl_name: &str) -> Result<(String, String), String>
 enum Kind {
     Obj,
     Mtl,
+}
+
+/// A file name without the double quotes some exporters put around one with
+/// spaces in it.
+fn unquoted(name: &str) -> &str {
+    let inside = name.strip_prefix('"').and_then(|n| n.strip_suffix('"'));
+    inside.filter(|n| !n.is_empty()).unwrap_or(name)
 }
 
 /// An MTL colour given by one number, `Kd 0.5`, which the format allows
