@@ -249,6 +249,12 @@ fn bad_files_are_one_line_errors() {
     );
 }
 
+/// The colour of each triangle of the model at `path`, and its warnings.
+fn colours_and_warnings(path: &Path) -> (Vec<Vec3>, Vec<String>) {
+    let (mesh, _, warnings) = rasterlab::scene::obj::read_obj(path).unwrap();
+    (mesh.triangles().map(|t| t.color).collect(), warnings)
+}
+
 #[test]
 fn text_that_is_not_utf8_is_read_as_latin1() {
     let dir = TempDir::new("latin1");
@@ -257,8 +263,7 @@ fn text_that_is_not_utf8_is_read_as_latin1() {
     dir.file("m.mtl", "newmtl Mat\u{e9}riau\nKd 1 0 0\n");
     let obj: &[u8] = b"# Cr\xe9\xe9 par 3ds Max\nmtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl Mat\xe9riau\nf 1 2 3\ng Bo\xeete\nf 1 2 3\n";
     let path = dir.file("m.obj", obj);
-    let (mesh, _, warnings) = rasterlab::scene::obj::read_obj(&path).unwrap();
-    let colors: Vec<Vec3> = mesh.triangles().map(|t| t.color).collect();
+    let (colors, warnings) = colours_and_warnings(&path);
     assert_eq!(colors, [Vec3::X, Vec3::X]);
     // The comment needs no warning; the name and the group do.
     assert_eq!(
@@ -279,8 +284,7 @@ fn a_byte_order_mark_and_a_one_number_colour_are_read() {
         "m.obj",
         "\u{feff}mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\nusemtl b\nf 1 2 3\n",
     );
-    let (mesh, _, warnings) = rasterlab::scene::obj::read_obj(&path).unwrap();
-    let colors: Vec<Vec3> = mesh.triangles().map(|t| t.color).collect();
+    let (colors, warnings) = colours_and_warnings(&path);
     assert_eq!(colors, [Vec3::X, Vec3::splat(0.25)]);
     assert!(warnings.is_empty(), "{warnings:?}");
     let path = dir.file("v.obj", "\u{feff}v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
@@ -297,8 +301,7 @@ fn mtllib_names_several_libraries_or_one_with_spaces_and_tga_textures_load() {
         "two.obj",
         format!("mtllib a1.mtl a2.mtl missing.mtl\n{tri}usemtl b\nf 1 2 3\nusemtl a\nf 1 2 3\n"),
     );
-    let (mesh, _, warnings) = rasterlab::scene::obj::read_obj(&path).unwrap();
-    let colors: Vec<Vec3> = mesh.triangles().map(|t| t.color).collect();
+    let (colors, warnings) = colours_and_warnings(&path);
     // The first library to define a name gives its material.
     assert_eq!(colors, [Vec3::Y, Vec3::X]);
     assert_eq!(

@@ -54,12 +54,10 @@ pub fn read_text_bounded(reader: impl Read, max_bytes: u64) -> Result<String, St
         return Err(format!("longer than {max_bytes} bytes: refused"));
     }
     let utf16 = |pair: fn([u8; 2]) -> u16| {
-        let units = bytes[2..].chunks(2).map(|c| match c {
-            &[a, b] => Ok(pair([a, b])),
-            _ => Err(()),
-        });
-        let units: Result<Vec<u16>, ()> = units.collect();
-        units.ok().and_then(|u| String::from_utf16(&u).ok())
+        let pairs = bytes[2..].chunks_exact(2);
+        let whole = pairs.remainder().is_empty();
+        let units: Vec<u16> = pairs.map(|c| pair([c[0], c[1]])).collect();
+        whole.then(|| String::from_utf16(&units).ok()).flatten()
     };
     match bytes.get(..2) {
         Some([0xff, 0xfe]) => utf16(u16::from_le_bytes),

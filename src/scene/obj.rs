@@ -83,28 +83,12 @@ pub fn read_obj(path: &Path) -> Result<(Mesh, Maps, Vec<String>), String> {
         // faces are drawn grey, as the usemtl warnings say (models are often
         // shared without theirs).
         let mut warnings = mtl_warnings.borrow_mut();
-        let what = "material library";
-        // The format lets `mtllib` name several files; a name with spaces in
-        // it, as Blender writes a file's, is one.
-        let libraries: Vec<(&str, Option<PathBuf>)> =
-            match file_beside(dir, name, what, &mut warnings) {
-                Some(found) => vec![(name, Some(found))],
-                None => {
-                    let parts: Vec<_> = name
-                        .split_whitespace()
-                        .map(|part| (part, file_beside(dir, part, what, &mut warnings)))
-                        .collect();
-                    match parts.iter().any(|(_, found)| found.is_some()) {
-                        true => parts,
-                        false => vec![(name, None)],
-                    }
-                }
-            };
+        let libraries = libraries_named(dir, name, &mut warnings);
         let (mut materials, mut names) = (Vec::new(), HashMap::new());
         for (part, found) in libraries {
             let Some(found) = found else {
                 warnings.push(format!(
-                    "{what} {part} is not there: its materials are left out"
+                    "material library {part} is not there: its materials are left out"
                 ));
                 continue;
             };
@@ -323,6 +307,28 @@ fn elsewhere(dir: &Path, name: &str) -> Option<PathBuf> {
 
 /// How many entries of a folder [`file_beside`] looks through for a name.
 const MAX_FOLDER_ENTRIES: usize = 10_000;
+
+/// The files an `mtllib` line names, each with where it was found: the
+/// format lets it name several, and a name with spaces in it, as Blender
+/// writes a model's, is one when that file is there.
+fn libraries_named<'n>(
+    dir: &Path,
+    name: &'n str,
+    warnings: &mut Vec<String>,
+) -> Vec<(&'n str, Option<PathBuf>)> {
+    let what = "material library";
+    if let Some(found) = file_beside(dir, name, what, warnings) {
+        return vec![(name, Some(found))];
+    }
+    let parts: Vec<_> = name
+        .split_whitespace()
+        .map(|part| (part, file_beside(dir, part, what, warnings)))
+        .collect();
+    match parts.iter().any(|(_, found)| found.is_some()) {
+        true => parts,
+        false => vec![(name, None)],
+    }
+}
 
 /// Reads one MTL file; the error names it and, where known, the line.
 fn load_mtl(path: &Path) -> Result<(Vec<tobj::Material>, HashMap<String, usize>), String> {
@@ -581,11 +587,11 @@ impl<R: BufRead> Lines<R> {
     /// written on Windows carry comments and names in its Western encoding,
     /// whose letters are Latin-1's, and a name so read in both the OBJ and its
     /// MTL still matches (an MTL's `é` in UTF-8 is the OBJ's byte 0xE9 read so).
-    fn latin1(&mut self, bytes: Vec<u8>) -> String {
+    fn latin1(&mut self, bytes: Vec<u8>, number: usize) -> String {
         let line: String = bytes.into_iter().map(char::from).collect();
         if !line.trim_start().starts_with('#') {
             if self.latin1.1 == 0 {
-                self.latin1.0 = self.line + 1;
+                self.latin1.0 = number;
             }
             self.latin1.1 += 1;
         }
@@ -767,20 +773,22 @@ impl<R: BufRead> BufRead for Lines<R> {
             Ok(n) if n > MAX_LINE_BYTES => Err(format!(
                 "longer than {MAX_LINE_BYTES} bytes: not a model file, or a broken one"
             )),
-            Ok(_) => Ok(String::from_utf8(bytes).unwrap_or_else(|e| self.latin1(e.into_bytes()))),
+            Ok(_) => Ok(
+                String::from_utf8(bytes).unwrap_or_else(|e| self.latin1(e.into_bytes(), number))
+            ),
         };
-        let line = match line {
-            // A byte-order mark, as Notepad saves UTF-8, would hide the first
-            // line's keyword from tobj (a vertex or `newmtl` lost silently).
-            Ok(line) if self.line == 0 && line.starts_with('\u{feff}') => {
-                line['\u{feff}'.len_utf8()..].to_string()
-            }
+        let mut line = match line {
             Ok(line) => line,
             Err(why) => {
                 self.stop = Some(format!("line {number}: {why}"));
                 return Err(io::Error::other(why));
             }
         };
+        // A byte-order mark, as Notepad saves UTF-8, would hide the first
+        // line's keyword from tobj (a vertex or `newmtl` lost silently).
+        if self.line == 0 && line.starts_with('\u{feff}') {
+            line.drain(..'\u{feff}'.len_utf8());
+        }
         let line = match self.kind {
             Kind::Mtl => one_number_colour(&line).unwrap_or(line),
             Kind::Obj => line,
