@@ -10,6 +10,7 @@ use common::temp_dir;
 use glam::Vec3;
 use rasterlab::measure::check::check_image;
 use rasterlab::measure::check::image::{ImageCheck, Setup};
+use rasterlab::measure::check::report::figure_words;
 use rasterlab::measure::check::rows::{check_rows, parse_rows, RowsVariant};
 use rasterlab::{cornell_box, Frame};
 use std::process::{Command, Output};
@@ -1591,6 +1592,131 @@ fn a_moved_camera_is_found() {
             "{json}"
         );
     }
+}
+
+/// The figures a check names: the one fitted, and the one it draws alike
+/// (filled and depth from a camera where nothing hides anything).
+fn figures_named(check: &ImageCheck) -> Vec<u8> {
+    let f = check.fitted.as_ref().expect("a lab 3 image");
+    let mut out = vec![f.hypothesis.figure()];
+    out.extend(check.alike.map(|a| a.hypothesis.figure()));
+    out
+}
+
+/// Cameras a walk reaches beyond the first search's grid: turned 23 to 53
+/// degrees, tilted 10 to 22, walked to a unit from the box's centre or
+/// nearer. Each is found to 0.02 units and half a degree.
+#[test]
+fn a_camera_walked_into_the_box_or_turned_far_is_found() {
+    use rasterlab::app::check::{check_image_file, CheckOptions};
+    use rasterlab::app::{self as app, image_io::write_image, Settings};
+    use rasterlab::{Figure, StageName};
+    let dir = temp_dir("check-walked-far");
+    // (stage, position, yaw, pitch, figure)
+    let poses = [
+        (StageName::PixelLight, [-0.5, 0.3, -2.0], -25.0, -10.0, 7),
+        (StageName::Depth, [0.0, 0.0, -1.0], 0.0, 0.0, 5),
+        (StageName::Depth, [-0.07, -0.2, -0.73], 23.9, -12.3, 5),
+        (StageName::VertexLight, [0.19, -0.13, -1.9], -52.5, -21.1, 6),
+        (StageName::Depth, [-0.66, -0.22, -3.27], 23.1, 21.9, 5),
+    ];
+    for (stage, at, yaw, pitch, figure) in poses {
+        let walked = Settings {
+            camera: rasterlab::Camera {
+                position: Vec3::from(at),
+                yaw: f32::to_radians(yaw),
+                pitch: f32::to_radians(pitch),
+                ..rasterlab::Camera::handout(500, 500)
+            },
+            ..Settings::default()
+        };
+        let (frame, _) = app::render(Figure::of(stage), &cornell_box(), &walked, None);
+        let shot = dir.join("walked.png");
+        write_image(&frame, &shot).unwrap();
+        let (check, _) = check_image_file(&shot, &CheckOptions::default()).unwrap();
+        assert!(
+            figures_named(&check).contains(&figure),
+            "{at:?}: {}",
+            check.text("walked.png")
+        );
+        let f = check.fitted.as_ref().expect("a lab 3 image");
+        assert_eq!(f.variants(), Vec::<&str>::new(), "{at:?}");
+        let c = check.camera.expect("a fitted camera");
+        let off = (c.position - walked.camera.position).abs();
+        assert!(off.max_element() < 0.02, "{at:?}: {c:?}");
+        assert!((c.yaw.to_degrees() - yaw).abs() < 0.5, "{at:?}: {c:?}");
+        assert!((c.pitch.to_degrees() - pitch).abs() < 0.5, "{at:?}: {c:?}");
+    }
+}
+
+/// From a camera turned 20 degrees, nothing in view hides anything else:
+/// filled and depth draw the same surfaces and differ only along edges,
+/// which a fitted camera places only to a fraction of a pixel. The check
+/// names both, whichever was drawn, and counts the edge pixels that differ.
+#[test]
+fn filled_and_depth_alike_from_a_fitted_camera_are_both_named() {
+    use rasterlab::app::check::{check_image_file, CheckOptions};
+    use rasterlab::app::{self as app, image_io::write_image, Settings};
+    use rasterlab::{Figure, StageName};
+    let dir = temp_dir("check-alike");
+    let walked = Settings {
+        camera: rasterlab::Camera {
+            position: Vec3::new(0.5, 0.0, -2.5),
+            yaw: 20f32.to_radians(),
+            ..rasterlab::Camera::handout(500, 500)
+        },
+        ..Settings::default()
+    };
+    let cornell = cornell_box();
+    let render = |stage| app::render(Figure::of(stage), &cornell, &walked, None).0;
+    let (filled, depth) = (render(StageName::Filled), render(StageName::Depth));
+    let differ = (filled.color.iter())
+        .zip(&depth.color)
+        .filter(|(a, b)| a != b)
+        .count();
+    assert!((100..2000).contains(&differ), "{differ}");
+    for (name, frame) in [("filled.png", filled), ("depth.png", depth)] {
+        write_image(&frame, &dir.join(name)).unwrap();
+        let (check, _) = check_image_file(&dir.join(name), &CheckOptions::default()).unwrap();
+        let mut named = figures_named(&check);
+        named.sort();
+        assert_eq!(named, [4, 5], "{name}: {}", check.text(name));
+        let alike = check.alike.expect("the other named");
+        // Counted at the fitted camera, whose edges lie a fraction of a pixel
+        // from the render's: of the order of the pixels the two renders differ in.
+        assert!(
+            alike.pixels > differ / 4 && alike.pixels < differ * 2,
+            "{name}: {alike:?} {differ}"
+        );
+        let text = check.text(name);
+        let first = text.lines().find(|l| l.starts_with("Your image")).unwrap();
+        let (a, b) = (named_first(&check), 9 - named_first(&check));
+        assert!(
+            first.starts_with(&format!(
+                "Your image is the handout's Figure {a} ({}) or Figure {b} ({}), which draws the same from this camera (no surface hides another in it) but for {} pixels on edges",
+                figure_words(a),
+                figure_words(b),
+                alike.pixels
+            )),
+            "{first}"
+        );
+        assert!(check.json(name).contains(&format!("\"or_figure\":{b}")));
+    }
+    // At the handout's camera the two differ inside the boxes: one is named.
+    for stage in [StageName::Filled, StageName::Depth] {
+        let check = check(&handout_render(stage));
+        assert_eq!(check.alike, None, "{stage:?}");
+    }
+}
+
+/// The figure a check fitted.
+fn named_first(check: &ImageCheck) -> u8 {
+    check
+        .fitted
+        .as_ref()
+        .expect("a lab 3 image")
+        .hypothesis
+        .figure()
 }
 
 /// A walked-around camera inside a window (a title bar with a caption, and

@@ -4,10 +4,11 @@
 //! [`check_image`], which runs them.
 
 use super::image::{
-    direct_pass, errors, largest_difference, measure, predict, predicted, where_off, Errors,
+    direct_pass, errors, largest_difference, measure, predict, predicted, where_off, Alike, Errors,
     Fitted, Hypothesis, ImageCheck, Measured, Setup, Shading, LAB3_SHARE, NONE, PI_314, THRESHOLD,
 };
 use super::probe::{LightProbe, COARSE_STRIDE, LIGHT_STRIDE};
+use super::student::Geometry;
 use crate::pipeline::target::unpack;
 use crate::pipeline::Frame;
 use crate::pipeline::StageName;
@@ -157,8 +158,9 @@ pub(super) fn best_shading(
         let nice = |v: f32, decimals| setup.power.unwrap_or(round_to(v, decimals));
         // π as 3.14 dims the light by 0.05 %, less than 0.13/255: it shows only
         // in an image whose interiors a free fit reproduces within a fraction
-        // of a level, not in one resized.
-        let shows_314 = !setup.resampled && fitted_errors.interior_rmse <= PI_314_SHOWS_BELOW;
+        // of a level, not in one resized, nor from a fitted camera (a
+        // thousandth of a unit moves the light on a wall near it by as much).
+        let shows_314 = setup.edges_exact && fitted_errors.interior_rmse <= PI_314_SHOWS_BELOW;
         let pis: &[f32] = match shows_314 {
             true => &[3.0, PI_314, std::f32::consts::PI],
             false => &[3.0, std::f32::consts::PI],
@@ -596,6 +598,10 @@ pub fn check_image(observed: &Frame, setup: &Setup) -> ImageCheck {
     let remaining = where_off(&best, observed);
     let expected = predicted(&best.measured, best.hypothesis.lit(), best.shading);
     let lab3 = best.errors.near >= LAB3_SHARE && best.errors.near_drawn >= LAB3_SHARE;
+    let alike = match lab3 {
+        true => drawn_alike(&best, setup),
+        false => None,
+    };
     ImageCheck {
         width: observed.width,
         height: observed.height,
@@ -610,5 +616,42 @@ pub fn check_image(observed: &Frame, setup: &Setup) -> ImageCheck {
         adjusted: false,
         camera: None,
         crop: None,
+        alike,
     }
+}
+
+/// Filled's or depth's other, when it draws the same image as `best` from
+/// `setup`'s camera as far as the check can see ([`Alike`]): no interior
+/// pixel differs, and either no pixel at all or the edges are not exact.
+fn drawn_alike(best: &Fitted, setup: &Setup) -> Option<Alike> {
+    let other = match best.hypothesis.stage {
+        StageName::Filled => StageName::Depth,
+        StageName::Depth => StageName::Filled,
+        _ => return None,
+    };
+    // The same student's geometry, with or without the depth buffer.
+    let hypothesis = Hypothesis {
+        geometry: Geometry {
+            depth: Hypothesis::handout(other).geometry.depth,
+            ..best.hypothesis.geometry
+        },
+        ..Hypothesis::handout(other)
+    };
+    let theirs = measure(hypothesis, &setup.mesh, &setup.camera, best.light);
+    let ours = &best.measured;
+    let mut pixels = 0;
+    for i in 0..ours.surface.len() {
+        let (a, b) = (
+            predict(ours, i, false, best.shading),
+            predict(&theirs, i, false, best.shading),
+        );
+        if a == b {
+            continue;
+        }
+        if ours.interior[i] || theirs.interior[i] {
+            return None;
+        }
+        pixels += 1;
+    }
+    (pixels == 0 || !setup.edges_exact).then_some(Alike { hypothesis, pixels })
 }

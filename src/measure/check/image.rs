@@ -709,6 +709,21 @@ pub struct ImageCheck {
     pub crop: Option<[u32; 4]>,
     /// Whether the image is a JPEG, whose pixels are not compared to 2/255.
     pub lossy: bool,
+    /// The other of filled and depth when, from this camera, it draws the
+    /// same image as the stage fitted ([`Alike`]).
+    pub alike: Option<Alike>,
+}
+
+/// Figure 4 and Figure 5 from a camera where no surface hides another inside
+/// the image: the same surfaces in every pixel but along edges (which of two
+/// faces sharing an edge draws it). Exact edges tell the two apart; a fitted
+/// camera's or a resized image's do not, nor does an image where the two
+/// draw the same pixels.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Alike {
+    pub hypothesis: Hypothesis,
+    /// Pixels where the two draw differently, all on edges.
+    pub pixels: usize,
 }
 
 impl ImageCheck {

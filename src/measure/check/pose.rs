@@ -18,7 +18,11 @@
 //! distances, 5 yaws, 3 pitches, the centre at 15 places), drawn at about 160
 //! pixels on the image's shorter side; the best few are refined by a pattern
 //! search there, and the best of those again at each finer size up to the
-//! image's own, where the steps end at 0.001 units and 1/64 degree.
+//! image's own, where the steps end at 0.001 units and 1/64 degree. That grid
+//! holds cameras that stepped back and turned a little; where its best pose
+//! leaves walls out of place, a second grid of 6,075 places and turns a walk
+//! reaches (up to past the box's centre, 60 degrees aside, 24 up or down),
+//! drawn at about 80 pixels, is searched the same way.
 
 use crate::pipeline::target::unpack;
 use crate::pipeline::{Camera, Depth, Frame, Pipeline};
@@ -366,12 +370,14 @@ pub const MIN_POSE_SCORE: f64 = 0.97;
 /// which wins a tie: a nearby focal length and distance frame the box almost
 /// alike (480 x 480 drawn with f = 480 from z = -3.4 is f = 500 from z = -3.51
 /// to 99.2 % of its walls' pixels), and only the full-size score tells them apart.
+/// Where that leaves walls out of place ([`CLOSE_POSE_SCORE`]), the places
+/// a walk reaches ([`Grid::Walked`]) are searched too, and the better pose kept.
 pub fn fit_pose(observed: &Frame, start: Camera, focals: &[f32]) -> Pose {
-    let mut pose = search(observed, start, focals);
+    let mut pose = search(observed, start, focals, Grid::Orbits);
     // The focal lengths whose best pose is known: none searched twice.
     let mut tried = vec![pose.camera.focal];
     if let Some(&first) = focals.first().filter(|&&f| f != pose.camera.focal) {
-        let alone = search(observed, start, &[first]);
+        let alone = search(observed, start, &[first], Grid::Orbits);
         tried.push(first);
         if alone.score >= pose.score {
             pose = alone;
@@ -379,17 +385,119 @@ pub fn fit_pose(observed: &Frame, start: Camera, focals: &[f32]) -> Pose {
     }
     if pose.score < MIN_POSE_SCORE {
         for f in focals.iter().filter(|f| !tried.contains(f)) {
-            let alone = search(observed, start, std::slice::from_ref(f));
+            let alone = search(observed, start, std::slice::from_ref(f), Grid::Orbits);
             if alone.score > pose.score {
                 pose = alone;
             }
         }
     }
+    if pose.score < CLOSE_POSE_SCORE {
+        let walked = search(observed, start, focals, Grid::Walked);
+        if walked.score > pose.score {
+            pose = walked;
+        }
+    }
     pose
 }
 
-/// One search of [`fit_pose`] over all of `focals` at once.
-fn search(observed: &Frame, start: Camera, focals: &[f32]) -> Pose {
+/// The share of pixels below which a pose found from [`Grid::Orbits`] is
+/// searched for again from [`Grid::Walked`]: every render from a pose either
+/// grid reaches scores above it (a fitted camera misplaces edges by a fraction
+/// of a pixel), and a pose caught on the wrong side of a wall below it.
+const CLOSE_POSE_SCORE: f64 = 0.995;
+
+/// Where a search starts.
+#[derive(Clone, Copy)]
+enum Grid {
+    /// The given pose and 1,800 orbits around the box (stepped back, turned
+    /// by up to 20 degrees).
+    Orbits,
+    /// The places and turns of a walk: cameras from z = -4.5, in front of
+    /// the box, to 0.4, past its centre, across it, turned by up to 60
+    /// degrees and tilted by up to 24.
+    Walked,
+}
+
+impl Grid {
+    /// The poses a search scores first, as orbits.
+    fn poses(self, start: &Camera) -> Vec<Orbit> {
+        let mut out = Vec::new();
+        match self {
+            Grid::Orbits => {
+                out.push(orbit_of(start));
+                for d in [4.0, 4.5, 5.0, 6.0, 7.0, 9.0, 12.0, 16.0] {
+                    for yaw in [-20.0, -10.0, 0.0, 10.0, 20.0] {
+                        for pitch in [-8.0, 0.0, 8.0] {
+                            for a in [-0.3, -0.15, 0.0, 0.15, 0.3] {
+                                for b in [-0.15, 0.0, 0.15] {
+                                    out.push([a, b, d, yaw, pitch]);
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+            // The box's centre may be behind a camera (one that walked into
+            // the box), but not level with it, where an orbit is undefined.
+            Grid::Walked => {
+                for z in [-4.5, -3.5, -2.75, -2.0, -1.5, -1.0, -0.5, 0.0, 0.4] {
+                    for x in [-0.7, -0.35, 0.0, 0.35, 0.7] {
+                        for y in [-0.5, 0.0, 0.5] {
+                            for yaw in [-60.0f32, -45.0, -30.0, -15.0, 0.0, 15.0, 30.0, 45.0, 60.0]
+                            {
+                                for pitch in [-24.0f32, -12.0, 0.0, 12.0, 24.0] {
+                                    let camera = Camera {
+                                        position: Vec3::new(x, y, z),
+                                        yaw: yaw.to_radians(),
+                                        pitch: pitch.to_radians(),
+                                        ..*start
+                                    };
+                                    let orbit = orbit_of(&camera);
+                                    if orbit[2].abs() >= 0.2 {
+                                        out.push(orbit);
+                                    }
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    /// The shorter side, in pixels, of the images the poses are scored at:
+    /// [`Grid::Walked`] has more than twice as many, drawn at half the size.
+    fn side(self) -> u32 {
+        match self {
+            Grid::Orbits => COARSE_SIDE,
+            Grid::Walked => COARSE_SIDE / 2,
+        }
+    }
+
+    /// How many of the best poses are refined: [`Grid::Walked`]'s steps are
+    /// coarser, so the pose sought is further from its best ones.
+    fn refined(self) -> usize {
+        match self {
+            Grid::Orbits => STARTS,
+            Grid::Walked => 4 * STARTS,
+        }
+    }
+
+    /// The sizes of the simplexes that end a search, in the last steps of
+    /// the pattern search: near the box a step moves the picture more, and
+    /// [`Grid::Walked`]'s last, smaller simplex settles what its first two
+    /// leave a step away.
+    fn simplex_sizes(self) -> &'static [f32] {
+        match self {
+            Grid::Orbits => &[16.0, 4.0],
+            Grid::Walked => &[16.0, 4.0, 1.0],
+        }
+    }
+}
+
+/// One search of [`fit_pose`] over all of `focals` at once, from `grid`.
+fn search(observed: &Frame, start: Camera, focals: &[f32], grid: Grid) -> Pose {
     let mesh = cornell_box();
     // One pipeline and one frame for the whole search, drawn into again and
     // again (a few thousand poses).
@@ -428,7 +536,7 @@ fn search(observed: &Frame, start: Camera, focals: &[f32]) -> Pose {
     let score_at = |level: &Level, p: Orbit, focal: f32| draw_at(level, p, focal, false);
     let short = start.width.min(start.height);
     let mut scales = vec![1u32];
-    while short / (scales[0] * 2) >= COARSE_SIDE {
+    while short / (scales[0] * 2) >= grid.side() {
         scales.insert(0, scales[0] * 2);
     }
     let levels: Vec<Level> = scales
@@ -436,22 +544,14 @@ fn search(observed: &Frame, start: Camera, focals: &[f32]) -> Pose {
         .map(|&s| Level::new(observed, &start, s, &classes))
         .collect();
     let coarse = &levels[0];
-    let given = orbit_of(&start);
-    let mut starts = Vec::new();
+    let poses = grid.poses(&start);
+    let mut starts = Vec::with_capacity(poses.len() * focals.len());
     for &focal in focals {
-        starts.push((given, score_at(coarse, given, focal), focal));
-        for d in [4.0, 4.5, 5.0, 6.0, 7.0, 9.0, 12.0, 16.0] {
-            for yaw in [-20.0, -10.0, 0.0, 10.0, 20.0] {
-                for pitch in [-8.0, 0.0, 8.0] {
-                    for a in [-0.3, -0.15, 0.0, 0.15, 0.3] {
-                        for b in [-0.15, 0.0, 0.15] {
-                            let p = [a, b, d, yaw, pitch];
-                            starts.push((p, score_at(coarse, p, focal), focal));
-                        }
-                    }
-                }
-            }
-        }
+        starts.extend(
+            poses
+                .iter()
+                .map(|&p| (p, score_at(coarse, p, focal), focal)),
+        );
     }
     starts.sort_by(|a, b| b.1.total_cmp(&a.1));
     // The steps that finish one level start the next, finer one: each level
@@ -459,7 +559,7 @@ fn search(observed: &Frame, start: Camera, focals: &[f32]) -> Pose {
     let halvings = 2;
     let (best, focal) = starts
         .iter()
-        .take(STARTS)
+        .take(grid.refined())
         .map(|&(p, e, f)| {
             let refined = refine((p, e), FIRST_STEPS, halvings, &|p| score_at(coarse, p, f));
             (refined, f)
@@ -482,9 +582,9 @@ fn search(observed: &Frame, start: Camera, focals: &[f32]) -> Pose {
             score_at(full, p, focal)
         });
     }
-    // A simplex, restarted once around its best: a fresh simplex turns to a
-    // ridge the first one had flattened against.
-    for size in [16.0, 4.0] {
+    // A simplex, restarted around its best: a fresh simplex turns to a ridge
+    // the first one had flattened against.
+    for &size in grid.simplex_sizes() {
         best = simplex(best, steps.map(|s| s * size), 150, &|p| {
             score_at(full, p, focal)
         });

@@ -100,6 +100,18 @@ impl ImageCheck {
             h.figure(),
             figure_words(h.figure())
         );
+        if let Some(a) = &self.alike {
+            let figure = a.hypothesis.figure();
+            let _ = write!(
+                first,
+                " or Figure {figure} ({}), which draws the same from this camera (no surface hides another in it){}",
+                figure_words(figure),
+                match a.pixels {
+                    0 => String::new(),
+                    n => format!(" but for {n} pixels on edges, which a fitted camera or a resized image does not place exactly"),
+                }
+            );
+        }
         if lit {
             let default = Shading::handout();
             let differs = |a: f32, b: f32| three_digits(a) != three_digits(b);
@@ -159,12 +171,22 @@ impl ImageCheck {
         }
         let _ = writeln!(out, "{first}");
         let _ = writeln!(out);
-        let _ = writeln!(
+        let _ = write!(
             out,
             "stage:      {} (Figure {})",
             h.stage.name(),
             h.figure()
         );
+        if let Some(a) = &self.alike {
+            let other = a.hypothesis;
+            let _ = write!(
+                out,
+                " or {} (Figure {})",
+                other.stage.name(),
+                other.figure()
+            );
+        }
+        let _ = writeln!(out);
         if lit {
             let _ = writeln!(
                 out,
@@ -283,6 +305,9 @@ impl ImageCheck {
             h.figure(),
             json_string(h.stage.name())
         );
+        if let Some(a) = &self.alike {
+            let _ = write!(out, ",\"or_figure\":{}", a.hypothesis.figure());
+        }
         if h.lit() {
             let _ = write!(
                 out,
