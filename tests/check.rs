@@ -1594,6 +1594,20 @@ fn a_moved_camera_is_found() {
     }
 }
 
+/// The settings of a 500 x 500 render from a camera walked to `at`, turned by
+/// `yaw` and tilted by `pitch` (degrees).
+fn walked_to(at: [f32; 3], yaw: f32, pitch: f32) -> rasterlab::app::Settings {
+    rasterlab::app::Settings {
+        camera: rasterlab::Camera {
+            position: Vec3::from(at),
+            yaw: yaw.to_radians(),
+            pitch: pitch.to_radians(),
+            ..rasterlab::Camera::handout(500, 500)
+        },
+        ..rasterlab::app::Settings::default()
+    }
+}
+
 /// The figures a check names: the one fitted, and the one it draws alike
 /// (filled and depth from a camera where nothing hides anything).
 fn figures_named(check: &ImageCheck) -> Vec<u8> {
@@ -1609,7 +1623,7 @@ fn figures_named(check: &ImageCheck) -> Vec<u8> {
 #[test]
 fn a_camera_walked_into_the_box_or_turned_far_is_found() {
     use rasterlab::app::check::{check_image_file, CheckOptions};
-    use rasterlab::app::{self as app, image_io::write_image, Settings};
+    use rasterlab::app::{self as app, image_io::write_image};
     use rasterlab::{Figure, StageName};
     let dir = temp_dir("check-walked-far");
     // (stage, position, yaw, pitch, figure)
@@ -1621,15 +1635,7 @@ fn a_camera_walked_into_the_box_or_turned_far_is_found() {
         (StageName::Depth, [-0.66, -0.22, -3.27], 23.1, 21.9, 5),
     ];
     for (stage, at, yaw, pitch, figure) in poses {
-        let walked = Settings {
-            camera: rasterlab::Camera {
-                position: Vec3::from(at),
-                yaw: f32::to_radians(yaw),
-                pitch: f32::to_radians(pitch),
-                ..rasterlab::Camera::handout(500, 500)
-            },
-            ..Settings::default()
-        };
+        let walked = walked_to(at, yaw, pitch);
         let (frame, _) = app::render(Figure::of(stage), &cornell_box(), &walked, None);
         let shot = dir.join("walked.png");
         write_image(&frame, &shot).unwrap();
@@ -1656,17 +1662,10 @@ fn a_camera_walked_into_the_box_or_turned_far_is_found() {
 #[test]
 fn filled_and_depth_alike_from_a_fitted_camera_are_both_named() {
     use rasterlab::app::check::{check_image_file, CheckOptions};
-    use rasterlab::app::{self as app, image_io::write_image, Settings};
+    use rasterlab::app::{self as app, image_io::write_image};
     use rasterlab::{Figure, StageName};
     let dir = temp_dir("check-alike");
-    let walked = Settings {
-        camera: rasterlab::Camera {
-            position: Vec3::new(0.5, 0.0, -2.5),
-            yaw: 20f32.to_radians(),
-            ..rasterlab::Camera::handout(500, 500)
-        },
-        ..Settings::default()
-    };
+    let walked = walked_to([0.5, 0.0, -2.5], 20.0, 0.0);
     let cornell = cornell_box();
     let render = |stage| app::render(Figure::of(stage), &cornell, &walked, None).0;
     let (filled, depth) = (render(StageName::Filled), render(StageName::Depth));
@@ -2112,6 +2111,49 @@ fn a_render_resized_to_another_size_names_no_variant() {
 /// A moved camera in a HiDPI screenshot (the window shown at twice its size,
 /// each pixel a 2 x 2 block): the render is found by its frame, halved, and its
 /// pose fitted as at its own size.
+/// A render whose edges all run along its columns (a camera facing the right
+/// wall's front edge: a yellow band on black) has every 2 x 2 block of one
+/// colour one time in four: it is checked at its own size, not halved, and
+/// explained there to 1/255.
+#[test]
+fn a_render_of_straight_edges_is_not_taken_for_a_doubled_one() {
+    use rasterlab::app::check::{check_image_file, CheckOptions};
+    use rasterlab::app::{self as app, image_io::write_image};
+    use rasterlab::measure::check::locate::pixel_doubled;
+    use rasterlab::{Figure, StageName};
+    let dir = temp_dir("check-straight-edges");
+    let facing = walked_to([0.7, 0.0, -1.5], 40.0, 0.0);
+    let (band, _) = app::render(Figure::of(StageName::Depth), &cornell_box(), &facing, None);
+    let blocks = (0..250 * 250)
+        .filter(|&k| {
+            let (x, y) = (2 * (k % 250), 2 * (k / 250));
+            let at = |x: u32, y: u32| band.color[(y * 500 + x) as usize];
+            [at(x + 1, y), at(x, y + 1), at(x + 1, y + 1)] == [at(x, y); 3]
+        })
+        .count();
+    assert_eq!(
+        blocks,
+        250 * 250,
+        "every block of one colour, as the case needs"
+    );
+    assert!(pixel_doubled(&band).is_none());
+    write_image(&band, &dir.join("band.png")).unwrap();
+    let (check, _) = check_image_file(&dir.join("band.png"), &CheckOptions::default()).unwrap();
+    assert!(
+        !check.notes.iter().any(|n| n.contains("twice the size")),
+        "{:?}",
+        check.notes
+    );
+    assert_eq!((check.width, check.height), (500, 500));
+    // A band is drawn alike from many poses: the one fitted is not asked for.
+    assert!(
+        figures_named(&check).contains(&5),
+        "{}",
+        check.text("band.png")
+    );
+    assert!(check.fitted.as_ref().unwrap().errors.max <= 1);
+}
+
 #[test]
 fn a_moved_camera_in_a_hidpi_screenshot_is_found_and_halved() {
     use rasterlab::app::check::{check_image_file, CheckOptions};

@@ -482,7 +482,10 @@ const DOUBLED_BLOCKS: f64 = 0.999;
 
 /// `image` halved when it is a render shown at twice its size pixel for pixel,
 /// as a HiDPI screen shows a window: every 2 x 2 block one colour, and enough
-/// drawn that this says something (64 changes of colour along its rows).
+/// drawn that this says something (64 changes of colour along its rows), with
+/// a slanted edge ([`SLANT_LINES`]): a render whose edges all run along rows
+/// or columns (a camera facing one wall's edge) has them between blocks one
+/// time in four at its own size.
 pub fn pixel_doubled(image: &Frame) -> Option<Frame> {
     let (w, h) = (image.width / 2, image.height / 2);
     if !image.width.is_multiple_of(2) || !image.height.is_multiple_of(2) || w < 16 || h < 16 {
@@ -502,7 +505,28 @@ pub fn pixel_doubled(image: &Frame) -> Option<Frame> {
     // Something drawn: a plain colour (a black image) is uniform at any scale.
     let halved = half(image);
     let changes = halved.color.windows(2).filter(|p| p[0] != p[1]).count();
-    (changes >= 64).then_some(halved)
+    (changes >= 64 && slanted(&halved)).then_some(halved)
+}
+
+/// How many columns and how many rows of an image must hold a change of
+/// colour (along its rows, and down its columns) for it to have an edge that
+/// is neither a row nor a column: each edge of the box seen in perspective
+/// changes colour in tens of them.
+const SLANT_LINES: usize = 8;
+
+/// Whether `image` has an edge that runs along neither its rows nor its
+/// columns: changes of colour along its rows fall in [`SLANT_LINES`] columns
+/// or more, and down its columns in as many rows.
+fn slanted(image: &Frame) -> bool {
+    let (w, h) = (image.width as usize, image.height as usize);
+    let at = |x: usize, y: usize| image.color[y * w + x];
+    let columns = (0..w - 1)
+        .filter(|&x| (0..h).any(|y| at(x, y) != at(x + 1, y)))
+        .count();
+    let rows = (0..h - 1)
+        .filter(|&y| (0..w).any(|x| at(x, y) != at(x, y + 1)))
+        .count();
+    columns >= SLANT_LINES && rows >= SLANT_LINES
 }
 
 /// `image` at twice its size, each pixel a 2 x 2 block.
