@@ -1161,13 +1161,16 @@ fn swapped_channels_other_focal_lengths_and_pasted_rows_are_explained() {
         "5,10",
         "15,15",
     ];
-    let o = rasterlab(&args);
-    assert_eq!(
-        o.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    let reproduced = |args: &[&str]| {
+        let o = rasterlab(args);
+        assert_eq!(
+            o.status.code(),
+            Some(0),
+            "{}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+    };
+    reproduced(&args);
     // As Windows PowerShell 5 saves `lab3.exe > rows.txt`: UTF-16 with its mark.
     let utf16: Vec<u8> = [0xfeff_u16]
         .into_iter()
@@ -1175,13 +1178,7 @@ fn swapped_channels_other_focal_lengths_and_pasted_rows_are_explained() {
         .flat_map(u16::to_le_bytes)
         .collect();
     std::fs::write(&pasted, utf16).unwrap();
-    let o = rasterlab(&args);
-    assert_eq!(
-        o.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
+    reproduced(&args);
     std::fs::write(&pasted, "Start: (1,5). End: (2,5).\n").unwrap();
     assert_eq!(rasterlab(&args).status.code(), Some(1));
     let missing = ["check", "rows", "/nonexistent.txt", "10,5", "5,10", "15,15"];

@@ -406,6 +406,15 @@ pub fn fit_pose(observed: &Frame, start: Camera, focals: &[f32]) -> Pose {
 /// of a pixel), and a pose caught on the wrong side of a wall below it.
 const CLOSE_POSE_SCORE: f64 = 0.995;
 
+/// [`Grid::Walked`]'s places: from in front of the box to past its centre,
+/// across it, and up and down.
+const WALKED_Z: [f32; 9] = [-4.5, -3.5, -2.75, -2.0, -1.5, -1.0, -0.5, 0.0, 0.4];
+const WALKED_X: [f32; 5] = [-0.7, -0.35, 0.0, 0.35, 0.7];
+const WALKED_Y: [f32; 3] = [-0.5, 0.0, 0.5];
+/// [`Grid::Walked`]'s turns and tilts, in degrees.
+const WALKED_YAWS: [f32; 9] = [-60.0, -45.0, -30.0, -15.0, 0.0, 15.0, 30.0, 45.0, 60.0];
+const WALKED_PITCHES: [f32; 5] = [-24.0, -12.0, 0.0, 12.0, 24.0];
+
 /// Where a search starts.
 #[derive(Clone, Copy)]
 enum Grid {
@@ -440,24 +449,23 @@ impl Grid {
             // The box's centre may be behind a camera (one that walked into
             // the box), but not level with it, where an orbit is undefined.
             Grid::Walked => {
-                for z in [-4.5, -3.5, -2.75, -2.0, -1.5, -1.0, -0.5, 0.0, 0.4] {
-                    for x in [-0.7, -0.35, 0.0, 0.35, 0.7] {
-                        for y in [-0.5, 0.0, 0.5] {
-                            for yaw in [-60.0f32, -45.0, -30.0, -15.0, 0.0, 15.0, 30.0, 45.0, 60.0]
-                            {
-                                for pitch in [-24.0f32, -12.0, 0.0, 12.0, 24.0] {
-                                    let camera = Camera {
-                                        position: Vec3::new(x, y, z),
-                                        yaw: yaw.to_radians(),
-                                        pitch: pitch.to_radians(),
-                                        ..*start
-                                    };
-                                    let orbit = orbit_of(&camera);
-                                    if orbit[2].abs() >= 0.2 {
-                                        out.push(orbit);
-                                    }
-                                }
-                            }
+                let places = WALKED_Z.iter().flat_map(|&z| {
+                    (WALKED_X.iter()).flat_map(move |&x| WALKED_Y.map(|y| Vec3::new(x, y, z)))
+                });
+                let turns = WALKED_YAWS
+                    .iter()
+                    .flat_map(|&yaw| WALKED_PITCHES.map(|p| (yaw, p)));
+                for position in places {
+                    for (yaw, pitch) in turns.clone() {
+                        let camera = Camera {
+                            position,
+                            yaw: yaw.to_radians(),
+                            pitch: pitch.to_radians(),
+                            ..*start
+                        };
+                        let orbit = orbit_of(&camera);
+                        if orbit[2].abs() >= 0.2 {
+                            out.push(orbit);
                         }
                     }
                 }
