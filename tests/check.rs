@@ -1652,6 +1652,31 @@ fn a_camera_walked_into_the_box_or_turned_far_is_found() {
     }
 }
 
+/// A camera the orbit's coordinates leave a few hundredths of a unit off
+/// (the box's centre far aside): the last search, along the camera's own
+/// position and turns, finds it closely enough that nothing but edges is left
+/// out of place (65 pixels inside the short block's front were, before it).
+#[test]
+fn a_walked_vertex_light_view_is_explained_to_its_edges() {
+    use rasterlab::app::check::{check_image_file, CheckOptions};
+    use rasterlab::app::{self as app, image_io::write_image};
+    use rasterlab::{Figure, StageName};
+    let dir = temp_dir("check-walked-place");
+    let walked = walked_to([0.63, 0.19, -2.05], 14.1, 8.5);
+    let figure = Figure::of(StageName::VertexLight);
+    let (frame, _) = app::render(figure, &cornell_box(), &walked, None);
+    let shot = dir.join("walked.png");
+    write_image(&frame, &shot).unwrap();
+    let (check, _) = check_image_file(&shot, &CheckOptions::default()).unwrap();
+    assert_eq!(figures_named(&check), [6], "{}", check.text("walked.png"));
+    assert_eq!(check.remaining.summary(), "edges", "{:?}", check.remaining);
+    let c = check.camera.expect("a fitted camera");
+    let off = (c.position - walked.camera.position).abs();
+    assert!(off.max_element() < 0.02, "{c:?}");
+    assert!((c.yaw.to_degrees() - 14.1).abs() < 0.5, "{c:?}");
+    assert!((c.pitch.to_degrees() - 8.5).abs() < 0.5, "{c:?}");
+}
+
 /// From a camera turned 20 degrees, nothing in view hides anything else:
 /// filled and depth draw the same surfaces and differ only along edges,
 /// which a fitted camera places only to a fraction of a pixel. The check

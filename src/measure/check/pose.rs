@@ -18,7 +18,9 @@
 //! distances, 5 yaws, 3 pitches, the centre at 15 places), drawn at about 160
 //! pixels on the image's shorter side; the best few are refined by a pattern
 //! search there, and the best of those again at each finer size up to the
-//! image's own, where the steps end at 0.001 units and 1/64 degree. That grid
+//! image's own, where the steps end at 0.001 units and 1/64 degree, and
+//! ends with a pattern search along the camera's own position, yaw and pitch,
+//! where an orbit's coordinates bend (the box's centre far aside). That grid
 //! holds cameras that stepped back and turned a little; where its best pose
 //! leaves walls out of place, a second grid of 6,075 places and turns a walk
 //! reaches (up to past the box's centre, 60 degrees aside, 24 up or down),
@@ -76,6 +78,35 @@ fn camera_of(p: Orbit, base: &Camera) -> Camera {
     let centre = Vec3::new(p[0] * p[2], p[1] * p[2], p[2]);
     camera.position = -(right * centre.x + down * centre.y + forward * centre.z);
     camera
+}
+
+/// A camera's place and turns: its position's x, y and z, then yaw and pitch
+/// in degrees.
+type Place = [f32; 5];
+
+/// The first steps of the last pattern search, in a [`Place`]'s coordinates.
+const PLACE_STEPS: Place = [0.02, 0.02, 0.02, 0.5, 0.5];
+
+/// The camera at `place`, with `base`'s image size and focal length.
+fn camera_at(place: Place, base: &Camera) -> Camera {
+    Camera {
+        position: Vec3::new(place[0], place[1], place[2]),
+        yaw: place[3].to_radians(),
+        pitch: place[4].to_radians(),
+        ..*base
+    }
+}
+
+/// The place of a camera (inverse of [`camera_at`]).
+fn place_of(camera: &Camera) -> Place {
+    let p = camera.position;
+    [
+        p.x,
+        p.y,
+        p.z,
+        camera.yaw.to_degrees(),
+        camera.pitch.to_degrees(),
+    ]
 }
 
 /// The orbit of a camera (inverse of [`camera_of`]).
@@ -596,6 +627,21 @@ fn search(observed: &Frame, start: Camera, focals: &[f32], grid: Grid) -> Pose {
         best = simplex(best, steps.map(|s| s * size), 150, &|p| {
             score_at(full, p, focal)
         });
+    }
+    // Last, along the camera's own position and turns: where the box's centre
+    // is far aside, an orbit's coordinates bend, and a pose they leave on a
+    // ridge a few hundredths of a unit away moves on along these.
+    let base = Camera {
+        focal,
+        ..full.camera
+    };
+    let orbit_at = |q: Place| orbit_of(&camera_at(q, &base));
+    let place = place_of(&camera_of(best.0, &base));
+    let (place, score) = refine((place, best.1), PLACE_STEPS, 5, &|q| {
+        score_at(full, orbit_at(q), focal)
+    });
+    if score > best.1 {
+        best = (orbit_at(place), score);
     }
     let start = Camera { focal, ..start };
     Pose {
