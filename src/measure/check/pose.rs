@@ -18,8 +18,8 @@
 //! distances, 5 yaws, 3 pitches, the centre at 15 places), drawn at about 160
 //! pixels on the image's shorter side; the best few are refined by a pattern
 //! search there, and the best of those again at each finer size up to the
-//! image's own, where the steps end at 0.001 units and 1/64 degree, and
-//! ends with a pattern search along the camera's own position, yaw and pitch,
+//! image's own, where the steps end at 0.001 units and 1/64 degree; a last
+//! pattern search then moves along the camera's own position, yaw and pitch,
 //! where an orbit's coordinates bend (the box's centre far aside). That grid
 //! holds cameras that stepped back and turned a little; where its best pose
 //! leaves walls out of place, a second grid of 6,075 places and turns a walk
