@@ -1614,14 +1614,35 @@ fn figures_named(check: &ImageCheck) -> Vec<u8> {
     out
 }
 
+/// The check of `stage` rendered from `walked`, written as a PNG into `dir`.
+fn check_walked(
+    dir: &std::path::Path,
+    stage: rasterlab::StageName,
+    walked: &rasterlab::app::Settings,
+) -> ImageCheck {
+    use rasterlab::app::check::{check_image_file, CheckOptions};
+    use rasterlab::app::{self as app, image_io::write_image};
+    let (frame, _) = app::render(rasterlab::Figure::of(stage), &cornell_box(), walked, None);
+    let shot = dir.join("walked.png");
+    write_image(&frame, &shot).unwrap();
+    check_image_file(&shot, &CheckOptions::default()).unwrap().0
+}
+
+/// That `check` fitted `walked`'s camera to 0.02 units and half a degree.
+fn assert_pose_found(check: &ImageCheck, walked: &rasterlab::app::Settings) {
+    let (c, w) = (check.camera.expect("a fitted camera"), walked.camera);
+    let off = (c.position - w.position).abs();
+    assert!(off.max_element() < 0.02, "{w:?}: {c:?}");
+    assert!((c.yaw - w.yaw).to_degrees().abs() < 0.5, "{w:?}: {c:?}");
+    assert!((c.pitch - w.pitch).to_degrees().abs() < 0.5, "{w:?}: {c:?}");
+}
+
 /// Cameras a walk reaches beyond the first search's grid: turned 23 to 53
 /// degrees, tilted 10 to 22, walked to a unit from the box's centre or
 /// nearer. Each is found to 0.02 units and half a degree.
 #[test]
 fn a_camera_walked_into_the_box_or_turned_far_is_found() {
-    use rasterlab::app::check::{check_image_file, CheckOptions};
-    use rasterlab::app::{self as app, image_io::write_image};
-    use rasterlab::{Figure, StageName};
+    use rasterlab::StageName;
     let dir = temp_dir("check-walked-far");
     // (stage, position, yaw, pitch, figure)
     let poses = [
@@ -1633,10 +1654,7 @@ fn a_camera_walked_into_the_box_or_turned_far_is_found() {
     ];
     for (stage, at, yaw, pitch, figure) in poses {
         let walked = walked_to(at, yaw, pitch);
-        let (frame, _) = app::render(Figure::of(stage), &cornell_box(), &walked, None);
-        let shot = dir.join("walked.png");
-        write_image(&frame, &shot).unwrap();
-        let (check, _) = check_image_file(&shot, &CheckOptions::default()).unwrap();
+        let check = check_walked(&dir, stage, &walked);
         assert!(
             figures_named(&check).contains(&figure),
             "{at:?}: {}",
@@ -1644,11 +1662,7 @@ fn a_camera_walked_into_the_box_or_turned_far_is_found() {
         );
         let f = check.fitted.as_ref().expect("a lab 3 image");
         assert_eq!(f.variants(), Vec::<&str>::new(), "{at:?}");
-        let c = check.camera.expect("a fitted camera");
-        let off = (c.position - walked.camera.position).abs();
-        assert!(off.max_element() < 0.02, "{at:?}: {c:?}");
-        assert!((c.yaw.to_degrees() - yaw).abs() < 0.5, "{at:?}: {c:?}");
-        assert!((c.pitch.to_degrees() - pitch).abs() < 0.5, "{at:?}: {c:?}");
+        assert_pose_found(&check, &walked);
     }
 }
 
@@ -1658,23 +1672,12 @@ fn a_camera_walked_into_the_box_or_turned_far_is_found() {
 /// out of place (65 pixels inside the short block's front were, before it).
 #[test]
 fn a_walked_vertex_light_view_is_explained_to_its_edges() {
-    use rasterlab::app::check::{check_image_file, CheckOptions};
-    use rasterlab::app::{self as app, image_io::write_image};
-    use rasterlab::{Figure, StageName};
     let dir = temp_dir("check-walked-place");
     let walked = walked_to([0.63, 0.19, -2.05], 14.1, 8.5);
-    let figure = Figure::of(StageName::VertexLight);
-    let (frame, _) = app::render(figure, &cornell_box(), &walked, None);
-    let shot = dir.join("walked.png");
-    write_image(&frame, &shot).unwrap();
-    let (check, _) = check_image_file(&shot, &CheckOptions::default()).unwrap();
+    let check = check_walked(&dir, rasterlab::StageName::VertexLight, &walked);
     assert_eq!(figures_named(&check), [6], "{}", check.text("walked.png"));
     assert_eq!(check.remaining.summary(), "edges", "{:?}", check.remaining);
-    let c = check.camera.expect("a fitted camera");
-    let off = (c.position - walked.camera.position).abs();
-    assert!(off.max_element() < 0.02, "{c:?}");
-    assert!((c.yaw.to_degrees() - 14.1).abs() < 0.5, "{c:?}");
-    assert!((c.pitch.to_degrees() - 8.5).abs() < 0.5, "{c:?}");
+    assert_pose_found(&check, &walked);
 }
 
 /// From a camera turned 20 degrees, nothing in view hides anything else:
@@ -2130,9 +2133,6 @@ fn a_render_resized_to_another_size_names_no_variant() {
     }
 }
 
-/// A moved camera in a HiDPI screenshot (the window shown at twice its size,
-/// each pixel a 2 x 2 block): the render is found by its frame, halved, and its
-/// pose fitted as at its own size.
 /// A render whose edges all run along its columns (a camera facing the right
 /// wall's front edge: a yellow band on black) has every 2 x 2 block of one
 /// colour one time in four: it is checked at its own size, not halved, and
@@ -2176,6 +2176,9 @@ fn a_render_of_straight_edges_is_not_taken_for_a_doubled_one() {
     assert!(check.fitted.as_ref().unwrap().errors.max <= 1);
 }
 
+/// A moved camera in a HiDPI screenshot (the window shown at twice its size,
+/// each pixel a 2 x 2 block): the render is found by its frame, halved, and its
+/// pose fitted as at its own size.
 #[test]
 fn a_moved_camera_in_a_hidpi_screenshot_is_found_and_halved() {
     use rasterlab::app::check::{check_image_file, CheckOptions};

@@ -481,20 +481,14 @@ impl Grid {
             // the box), but not level with it, where an orbit is undefined.
             Grid::Walked => {
                 let places = WALKED_Z.iter().flat_map(|&z| {
-                    (WALKED_X.iter()).flat_map(move |&x| WALKED_Y.map(|y| Vec3::new(x, y, z)))
+                    (WALKED_X.iter()).flat_map(move |&x| WALKED_Y.map(|y| [x, y, z]))
                 });
                 let turns = WALKED_YAWS
                     .iter()
                     .flat_map(|&yaw| WALKED_PITCHES.map(|p| (yaw, p)));
-                for position in places {
+                for [x, y, z] in places {
                     for (yaw, pitch) in turns.clone() {
-                        let camera = Camera {
-                            position,
-                            yaw: yaw.to_radians(),
-                            pitch: pitch.to_radians(),
-                            ..*start
-                        };
-                        let orbit = orbit_of(&camera);
+                        let orbit = orbit_of(&camera_at([x, y, z, yaw, pitch], start));
                         if orbit[2].abs() >= 0.2 {
                             out.push(orbit);
                         }
