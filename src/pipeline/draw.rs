@@ -562,25 +562,20 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
                             continue;
                         }
                     }
-                    if pass_over {
-                        // Plain comparisons: the rows of vertices in view are never NaN.
-                        let [a, b, c] = face.vertices.map(|v| screen[v as usize].y);
-                        let above = (a < top) & (b < top) & (c < top);
-                        let below = (a > bottom) & (b > bottom) & (c > bottom);
-                        if above | below {
-                            // In full view it is drawn, by the band its rows are in.
-                            self.stats.drawn += 1;
-                            continue;
-                        }
-                    }
                     // A triangle the rasterizer says covers nothing (most of a fine
-                    // mesh's, with the exact one) is passed over before its surface
-                    // and vertices are shaded.
+                    // mesh's, with the exact one), or nothing in this band's rows
+                    // (the band its rows are in draws it), is passed over before
+                    // its surface and vertices are shaded.
                     let placed = match in_view {
                         true => face.vertices.map(|v| placed_from[v as usize]),
                         false => Default::default(),
                     };
-                    if in_view && self.raster.misses(placed, &view.viewport) {
+                    let rows = &view.viewport.bounds.y;
+                    let misses = |placed| {
+                        self.raster.misses(placed, &view.viewport)
+                            || pass_over && self.raster.misses_rows(placed, rows)
+                    };
+                    if in_view && misses(placed) {
                         self.stats.drawn += 1;
                         continue;
                     }

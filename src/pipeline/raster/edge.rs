@@ -17,6 +17,7 @@ use super::rows::draw_line_by;
 use super::{Placed, Rasterizer, SharedPlacing, Viewport};
 use crate::pipeline::clip::ScreenVertex;
 use crate::pipeline::interpolate::{Pixel, Varying};
+use std::ops::Range;
 
 /// The exact rasterizer.
 #[derive(Clone, Copy, Debug, Default)]
@@ -331,6 +332,14 @@ impl Rasterizer for EdgeRaster {
         none_between(a.0, b.0, c.0) || none_between(a.1, b.1, c.1)
     }
 
+    /// No row of pixel centres between its corners is one of `rows`.
+    #[inline]
+    fn misses_rows(&self, places: [(i32, i32); 3], rows: &Range<i32>) -> bool {
+        let [a, b, c] = places.map(|(_, y)| i64::from(y));
+        let (first, last) = centres_between(a, b, c);
+        last < i64::from(rows.start) || first >= i64::from(rows.end)
+    }
+
     fn triangle<V: Varying>(
         &self,
         _: &mut (),
@@ -475,6 +484,7 @@ mod tests {
         let mut next = xorshift(0x2545_f491_4f6c_dd1du64);
         let view = viewport(8, 8);
         let (mut drawn, mut empty, mut passed_over) = (0, 0, 0);
+        let mut beyond_band = 0;
         for _ in 0..20_000 {
             let (x0, y0) = (2 + next(4), 2 + next(4));
             let mut corner = || Snapped {
@@ -507,8 +517,17 @@ mod tests {
             assert_eq!(got, want, "{tri:?}");
             // The pipeline's question before shading: never yes for a triangle
             // that covers a pixel.
-            let missed = EdgeRaster.misses(tri.map(|c| (c.x as i32, c.y as i32)), &view);
+            let places = tri.map(|c| (c.x as i32, c.y as i32));
+            let missed = EdgeRaster.misses(places, &view);
             assert!(!missed || got.is_empty(), "{tri:?}");
+            // A band's question: never yes for a triangle that covers a pixel
+            // in the band's rows.
+            for rows in [0..3, 3..5, 5..8, 4..5] {
+                let beyond = EdgeRaster.misses_rows(places, &rows);
+                let within = got.iter().filter(|(_, y)| rows.contains(y)).count();
+                assert!(!beyond || within == 0, "{tri:?} in rows {rows:?}");
+                beyond_band += (beyond && !got.is_empty()) as usize;
+            }
             drawn += got.len();
             empty += got.is_empty() as usize;
             passed_over += missed as usize;
@@ -519,6 +538,8 @@ mod tests {
             drawn > 8_000 && empty > 5_000 && passed_over > 1_000,
             "{drawn} pixels, {empty} empty, {passed_over} passed over"
         );
+        // And triangles that do cover pixels, all in other rows, are found so.
+        assert!(beyond_band > 10_000, "{beyond_band} beyond a band");
     }
 
     #[test]

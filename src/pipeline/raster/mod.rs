@@ -106,6 +106,15 @@ pub trait Rasterizer: Copy + Default + Send + 'static {
     /// the pipeline can pass it over before shading its vertices.
     fn misses(&self, places: [Self::Place; 3], viewport: &Viewport) -> bool;
 
+    /// Whether a triangle placed at `places` surely covers no pixel in the
+    /// image rows `rows`, so that a band of a frame drawn in bands passes over
+    /// its neighbour's triangles before shading their vertices. Never, unless
+    /// the rasterizer says: a triangle it draws is cut to the band's rows.
+    fn misses_rows(&self, places: [Self::Place; 3], rows: &Range<i32>) -> bool {
+        let _ = (places, rows);
+        false
+    }
+
     /// How the pipeline may place every vertex of a mesh in full view in the
     /// pass that projects them, once per frame for all bands: the built-in
     /// rasterizers' places are two `i32`s. None: each band places its own.

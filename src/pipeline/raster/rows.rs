@@ -10,6 +10,7 @@ use crate::pipeline::clip::ScreenVertex;
 use crate::pipeline::interpolate::{
     line_pixels, Pixel, RunningSum, Steps, Varying, RUNNING_SUM_LIMIT,
 };
+use std::ops::Range;
 
 /// The handout's rows rasterizer (`--raster rows`, the default).
 #[derive(Clone, Copy, Debug, Default)]
@@ -89,6 +90,13 @@ impl Rasterizer for RowRaster {
     /// Never: `ComputePolygonRows` gives every triangle the rows its corners span.
     fn misses(&self, _: [(i32, i32); 3], _: &Viewport) -> bool {
         false
+    }
+
+    /// When the rows its corners span are all above or all below `rows`.
+    #[inline]
+    fn misses_rows(&self, places: [(i32, i32); 3], rows: &Range<i32>) -> bool {
+        let [a, b, c] = places.map(|(_, y)| y);
+        a.max(b).max(c) < rows.start || a.min(b).min(c) >= rows.end
     }
 
     #[inline]
@@ -352,6 +360,23 @@ mod tests {
             .zip(&rows.right)
             .map(|(l, r)| ((l.x, l.y), (r.x, r.y)))
             .collect()
+    }
+
+    #[test]
+    fn a_band_misses_exactly_the_triangles_whose_rows_lie_beyond_it() {
+        let triangles = [
+            [(10, 20), (30, 10), (20, 40)],
+            [(0, 5), (3, 5), (1, 5)],
+            [(5, 0), (0, 9), (9, 9)],
+        ];
+        for triangle in triangles {
+            let spanned: Vec<i32> = rows_of(&triangle).iter().map(|(l, _)| l.1).collect();
+            for rows in [0..5, 5..6, 6..10, 10..11, 11..40, 40..41, 41..60] {
+                let touched = spanned.iter().any(|y| rows.contains(y));
+                let beyond = RowRaster.misses_rows(triangle, &rows);
+                assert_eq!(beyond, !touched, "{triangle:?} in rows {rows:?}");
+            }
+        }
     }
 
     #[test]
