@@ -570,12 +570,11 @@ impl<V: Varying, I: Interpolation, R: Rasterizer> Pipeline<V, I, R> {
                         true => face.vertices.map(|v| placed_from[v as usize]),
                         false => Default::default(),
                     };
-                    let rows = &view.viewport.bounds.y;
-                    let misses = |placed| {
-                        self.raster.misses(placed, &view.viewport)
-                            || pass_over && self.raster.misses_rows(placed, rows)
-                    };
-                    if in_view && misses(placed) {
+                    let v = &view.viewport;
+                    let misses = in_view
+                        && (self.raster.misses(placed, v)
+                            || pass_over && self.raster.misses_rows(placed, &v.bounds.y));
+                    if misses {
                         self.stats.drawn += 1;
                         continue;
                     }
