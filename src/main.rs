@@ -4,8 +4,10 @@ use clap::{CommandFactory, FromArgMatches};
 use rasterlab::app::cli::{
     CheckArgs, CheckRows, Cli, Command, Explain, Failure, OutputGroup, Parts, StageOptions,
 };
+use rasterlab::app::streams::printable;
 use rasterlab::app::{self, check, explain, viewer};
 use rasterlab::measure::raytrace;
+use rasterlab::say;
 use rasterlab::StageName;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -30,12 +32,12 @@ fn render(
     let (timing, stats) =
         app::render_to_file(figure, scene.model(), &settings, &out, runs, buffer)?;
     if let Some(t) = timing {
-        eprintln!("render: {t}");
+        say!("render: {t}");
     }
     if parts.raster.is_some_and(|r| r.stats) {
-        eprint!("{}", app::stats_text(&stats));
+        say!("{}", app::stats_text(&stats).trim_end());
     }
-    eprintln!("wrote {}", app::image_io::describe(&out));
+    say!("wrote {}", app::image_io::describe(&out));
     Ok(())
 }
 
@@ -70,7 +72,7 @@ fn check(a: &CheckArgs) -> Result<(), Failure> {
                 .map_err(failure)?;
         print_out(&table)?;
         let written = a.csv.iter().chain(checks.iter().flat_map(|c| &c.written));
-        written.for_each(|path| eprintln!("wrote {}", path.display()));
+        written.for_each(|path| say!("wrote {}", printable(&path.display().to_string())));
         return match checks.iter().all(|c| c.status == check::Status::Matches) {
             true => Ok(()),
             false => Err(Failure::Differs),
@@ -92,7 +94,7 @@ fn check(a: &CheckArgs) -> Result<(), Failure> {
         false => print_out(&result.text(&name))?,
     }
     for path in written {
-        eprintln!("wrote {}", path.display());
+        say!("wrote {}", printable(&path.display().to_string()));
     }
     match result.is_handouts_figure(a.stage) {
         true => Ok(()),
@@ -108,7 +110,7 @@ fn print_out(text: &str) -> Result<(), Failure> {
 
 fn wrote(paths: Vec<PathBuf>) {
     for path in paths {
-        eprintln!("wrote {}", path.display());
+        say!("wrote {}", printable(&path.display().to_string()));
     }
 }
 
@@ -155,9 +157,9 @@ fn run(cli: Cli) -> Result<(), Failure> {
             let runs = a.output.time.map(|n| n as usize);
             let timing = app::raytrace_to_file(scene.model(), &settings, &options, &out, runs)?;
             if let Some(t) = timing {
-                eprintln!("render: {t}");
+                say!("render: {t}");
             }
-            eprintln!("wrote {}", app::image_io::describe(&out));
+            say!("wrote {}", app::image_io::describe(&out));
             Ok(())
         }
         Command::Report(a) => {
@@ -197,20 +199,23 @@ fn run(cli: Cli) -> Result<(), Failure> {
                 fps: a.fps as usize,
             };
             let summary = viewer::run(options)?;
-            eprintln!(
+            say!(
                 "view: {} frames, frame time median {:.2} ms, draw median {:.2} ms",
                 summary.frames,
                 summary.frame_median.as_secs_f64() * 1e3,
                 summary.draw_median.as_secs_f64() * 1e3
             );
-            eprintln!("view: last frame: {}", summary.reproduce());
+            say!("view: last frame: {}", summary.reproduce());
             Ok(())
         }
         Command::Export(a) => {
             let scene = app::cli::load_scene(&a.scene)?;
+            if scene.maps.any(&scene.mesh, |m| m.texture) {
+                say!("warning: the scene's textures are not written: its .mtl gives each material its Kd only");
+            }
             app::export_obj(&scene.mesh, &a.out)?;
             let n = scene.mesh.faces.len();
-            eprintln!("wrote {} and its .mtl ({n} triangles)", a.out.display());
+            say!("wrote {} and its .mtl ({n} triangles)", a.out.display());
             Ok(())
         }
         Command::Animate(a) => {
@@ -223,7 +228,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             app::animation_size(w, h).map_err(Failure::Usage)?;
             let delay = a.delay as u32;
             let frames = app::animate_to_file(figure, scene.model(), &settings, &out, delay)?;
-            eprintln!("wrote {} ({frames} frames)", app::image_io::describe(&out));
+            say!("wrote {} ({frames} frames)", app::image_io::describe(&out));
             Ok(())
         }
         Command::Explain(e) => {
@@ -251,7 +256,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
             let out = out.clone().unwrap_or_else(|| PathBuf::from(default));
             let frame = picture.map_err(Failure::Usage)?;
             app::image_io::write_image(&frame, &out)?;
-            eprintln!("wrote {}", app::image_io::describe(&out));
+            say!("wrote {}", app::image_io::describe(&out));
             Ok(())
         }
         Command::Check(a) => check(a),
@@ -260,6 +265,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
 }
 
 fn main() -> ExitCode {
+    app::streams::guard();
     let cli = match Cli::command()
         .try_get_matches()
         .and_then(|m| Cli::from_arg_matches(&m))
@@ -276,23 +282,23 @@ fn main() -> ExitCode {
             return ExitCode::SUCCESS;
         }
         Err(e) => {
-            eprintln!("{} (see 'rasterlab --help')", app::cli::one_line(&e));
+            say!("{} (see 'rasterlab --help')", app::cli::one_line(&e));
             return ExitCode::from(2);
         }
     };
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(Failure::Usage(message)) => {
-            eprintln!("error: {message} (see 'rasterlab --help')");
+            say!("error: {} (see 'rasterlab --help')", printable(&message));
             ExitCode::from(2)
         }
         Err(Failure::Run(message)) => {
-            eprintln!("error: {message}");
+            say!("error: {}", printable(&message));
             ExitCode::from(1)
         }
         Err(Failure::ClosedEarly | Failure::Differs) => ExitCode::from(1),
         Err(Failure::Trouble(message)) => {
-            eprintln!("error: {message}");
+            say!("error: {}", printable(&message));
             ExitCode::from(2)
         }
     }

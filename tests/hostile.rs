@@ -19,6 +19,15 @@ fn err(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
+/// The lines of stderr that are warnings.
+fn warnings(o: &Output) -> Vec<&str> {
+    std::str::from_utf8(&o.stderr)
+        .unwrap()
+        .lines()
+        .filter(|l| l.starts_with("warning: "))
+        .collect()
+}
+
 /// Runs the binary with `args`, killed after 20 s: a hang is a failure here.
 fn run(args: &[&str]) -> Output {
     run_in(None, args)
@@ -568,11 +577,7 @@ fn what_a_model_asks_for_and_does_not_get_is_said() {
         &["pixel-light", "--scene", "m.obj", "-o", "m.png"],
     );
     assert!(o.status.success(), "{}", err(&o));
-    let warnings: Vec<&str> = std::str::from_utf8(&o.stderr)
-        .unwrap()
-        .lines()
-        .filter(|l| l.starts_with("warning: "))
-        .collect();
+    let warnings = warnings(&o);
     assert_eq!(
         warnings,
         [
@@ -628,4 +633,388 @@ fn typos_get_a_suggestion_on_the_one_line() {
     );
     let o = run(&["pixl-light"]);
     refused(&o, 2, "'pixel-light'");
+}
+
+// A second adversarial review (after `ee1ab91`): 16 more cases, each below.
+
+/// `sh -c SCRIPT` in `dir`, where `$B` is the binary.
+fn shell(dir: &Path, script: &str) -> Output {
+    Command::new("sh")
+        .current_dir(dir)
+        .env("B", bin())
+        .args(["-c", script])
+        .output()
+        .unwrap()
+}
+
+const TRIANGLE: &str = "v 0 0 0\nv 1 0 0\nv 1 1 0\n";
+
+/// An MTL file at `path` of `count` materials `m0`, `m1`, ..., each of colour `kd`.
+fn materials(path: &Path, count: usize, kd: &str) {
+    let text: String = (0..count)
+        .map(|i| format!("newmtl m{i}\nKd {kd}\n"))
+        .collect();
+    fs::write(path, text).unwrap();
+}
+
+#[test]
+fn the_least_whole_number_is_no_way_past_the_coordinate_limit() {
+    // `i32::MIN.abs()` is itself: it passed the check and asked for 25 GB.
+    for args in [
+        ["rows", "--", "0,-2147483648", "0,0", "5,5"].as_slice(),
+        &[
+            "explain",
+            "line",
+            "-o",
+            "e.png",
+            "--",
+            "-2147483648,0",
+            "5,5",
+        ],
+    ] {
+        let o = run(args);
+        refused(&o, 2, "coordinates must be within -10000..10000");
+    }
+}
+
+#[test]
+fn standard_streams_that_cannot_be_written_lose_only_their_messages() {
+    let dir = temp_dir("streams");
+    // stderr full or gone: the image is still written, with the usual status.
+    let o = shell(&dir, "$B depth -o p.png 2>/dev/full");
+    assert_eq!(o.status.code(), Some(0));
+    assert!(dir.join("p.png").is_file());
+    let o = shell(&dir, "$B depth --size 0x0 2>/dev/full");
+    assert_eq!(o.status.code(), Some(2));
+    // stdout closed: what was meant for it fails, where it said it was written.
+    for script in ["$B rows 10,5 5,10 15,15 >&-", "$B depth -o - >&-"] {
+        let o = shell(&dir, script);
+        refused(
+            &o,
+            1,
+            "standard output: it was closed when rasterlab started",
+        );
+    }
+    // Sent to /dev/null on purpose: written, as asked.
+    let o = shell(&dir, "$B rows 10,5 5,10 15,15 >/dev/null");
+    assert_eq!(o.status.code(), Some(0), "{}", err(&o));
+}
+
+#[test]
+fn a_model_file_cannot_write_to_the_terminal() {
+    let dir = temp_dir("escapes");
+    let model = format!("{TRIANGLE}usemtl \u{1b}]0;TITLE\u{7}\u{1b}[2Jm\nf 1 2 3\n");
+    fs::write(dir.join("esc.obj"), model).unwrap();
+    let o = run_in(Some(&dir), &["depth", "--scene", "esc.obj", "-o", "o.png"]);
+    assert!(o.status.success(), "{}", err(&o));
+    assert!(!o.stderr.contains(&0x1b) && !o.stderr.contains(&0x07));
+    assert!(
+        err(&o).contains("usemtl \\u{1b}]0;TITLE\\u{7}\\u{1b}[2Jm: no material"),
+        "{}",
+        err(&o)
+    );
+}
+
+#[test]
+fn a_library_named_again_and_again_is_read_once() {
+    let dir = temp_dir("mtllib-again");
+    materials(&dir.join("many.mtl"), 2000, "0.5 0.5 0.5");
+    // tobj kept each reading's materials: 1000 lines of 20 000 took 3 GB.
+    let model = format!(
+        "{}{TRIANGLE}usemtl m5\nf 1 2 3\n",
+        "mtllib many.mtl\n".repeat(1000)
+    );
+    fs::write(dir.join("rep.obj"), model).unwrap();
+    let o = run_in_2gb(&dir, "depth --scene rep.obj -o o.png");
+    assert!(o.status.success(), "{}", err(&o));
+    let (mesh, _, _) = rasterlab::scene::read_obj(&dir.join("rep.obj")).unwrap();
+    assert_eq!(mesh.materials.len(), 2000);
+}
+
+#[test]
+fn a_texture_name_of_thousands_of_parts_is_looked_for_briefly() {
+    let dir = temp_dir("long-name");
+    let name = format!("{}/t.png", vec!["x"; 16000].join("/"));
+    fs::write(
+        dir.join("q.mtl"),
+        format!("newmtl m\nKd .5 .5 .5\nmap_Kd {name}\n"),
+    )
+    .unwrap();
+    let model =
+        format!("mtllib q.mtl\n{TRIANGLE}vt 0 0\nvt 1 0\nvt 1 1\nusemtl m\nf 1/1 2/2 3/3\n");
+    fs::write(dir.join("q.obj"), model).unwrap();
+    // 47 s before; `run` gives up after 20.
+    let o = run_in(Some(&dir), &["depth", "--scene", "q.obj", "-o", "o.png"]);
+    assert!(o.status.success(), "{}", err(&o));
+    let warning = err(&o).lines().next().unwrap().to_string();
+    assert!(warning.contains("x/x/.../x/x"), "{warning}");
+    assert!(
+        warning.ends_with("/t.png is not there: its Kd is drawn instead"),
+        "{warning}"
+    );
+    assert!(warning.len() < 300, "{warning}");
+}
+
+#[test]
+fn a_texture_larger_than_memory_is_refused_before_decoding() {
+    let dir = temp_dir("big-texture");
+    // The header alone: the room for it is asked for before its pixels are read.
+    png_header(&dir.join("big.png"), 16384, 16384);
+    let o = run_in_2gb(&dir, "pixel-light --texture big.png -o o.png");
+    refused(
+        &o,
+        1,
+        "texture big.png: out of memory: its 16384x16384 texels need 5369 MB",
+    );
+    // A model's textures in all are bounded too.
+    fs::write(
+        dir.join("m.mtl"),
+        "newmtl a\nmap_Kd big.png\nnewmtl b\nmap_Kd big2.png\n",
+    )
+    .unwrap();
+    png_header(&dir.join("big2.png"), 16384, 2);
+    let model = format!("mtllib m.mtl\n{TRIANGLE}vt 0 0\nvt 1 0\nvt 1 1\nusemtl a\nf 1/1 2/2 3/3\nusemtl b\nf 1/1 2/2 3/3\n");
+    fs::write(dir.join("m.obj"), model).unwrap();
+    let e = rasterlab::scene::read_obj(&dir.join("m.obj"))
+        .map(|_| ())
+        .unwrap_err();
+    assert!(
+        e.ends_with("material b: map_Kd big2.png: the model's textures would hold more than 268435456 texels in all: refused"),
+        "{e}"
+    );
+}
+
+#[test]
+fn what_the_formats_allow_and_the_lab_does_not_draw_is_left_out() {
+    let dir = temp_dir("formats");
+    // Polylines (tobj filled `l 1 2 3` as a face), vertex colours on some
+    // vertices, old Mac line ends, a line continued with a backslash.
+    let cases = [
+        ("l", format!("{TRIANGLE}l 1 2 3\nf 1 2 3\nl 1 2\n")),
+        (
+            "colours",
+            "v 0 0 0 1 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\n".to_string(),
+        ),
+        ("mac", "v 0 0 0\rv 1 0 0\rv 1 1 0\rf 1 2 3\r".to_string()),
+        (
+            "continued",
+            "v 0 0 \\\n0\nv 1 0 0\nv 1 1 0\nf 1 2 \\\n3\n".to_string(),
+        ),
+    ];
+    let (plain, _, _) = {
+        fs::write(dir.join("plain.obj"), format!("{TRIANGLE}f 1 2 3\n")).unwrap();
+        rasterlab::scene::read_obj(&dir.join("plain.obj")).unwrap()
+    };
+    for (name, text) in cases {
+        let path = dir.join(format!("{name}.obj"));
+        fs::write(&path, text).unwrap();
+        let (mesh, _, warnings) = rasterlab::scene::read_obj(&path).unwrap();
+        assert_eq!(mesh.positions, plain.positions, "{name}");
+        assert_eq!(mesh.faces.len(), 1, "{name}");
+        let expected: Vec<String> = match name {
+            "l" => vec![format!(
+                "{}: line 4: a polyline (l) is not drawn: left out (and 1 more such lines)",
+                path.display()
+            )],
+            _ => Vec::new(),
+        };
+        assert_eq!(warnings, expected, "{name}");
+    }
+    // MTL statements of the format that the lab does not draw from: left out,
+    // where `d -halo` or `illum 2.0` stopped the model with "material parse error".
+    fs::write(
+        dir.join("t.mtl"),
+        "newmtl m\nKd .8 .2 .2\nd -halo 0.5\nKa spectral ident.rfl 1.0\nKd xyz 0.5 0.5 0.5\nillum 2.0\nillum\nNs\nmap_Ka\nbump\n",
+    )
+    .unwrap();
+    let path = dir.join("t.obj");
+    fs::write(
+        &path,
+        format!("mtllib t.mtl\n{TRIANGLE}usemtl m\nf 1 2 3\n"),
+    )
+    .unwrap();
+    let (mesh, _, warnings) = rasterlab::scene::read_obj(&path).unwrap();
+    assert_eq!(mesh.materials[0].color, glam::Vec3::new(0.8, 0.2, 0.2));
+    assert_eq!(
+        warnings,
+        [format!(
+            "{}: material library {}: line 5: Kd xyz is not supported: left out",
+            path.display(),
+            dir.join("t.mtl").display()
+        )]
+    );
+}
+
+#[test]
+fn a_scenes_warnings_are_printed_up_to_a_bound() {
+    let dir = temp_dir("many-warnings");
+    materials(&dir.join("w.mtl"), 200, "2 .5 .5");
+    fs::write(
+        dir.join("w.obj"),
+        format!("mtllib w.mtl\n{TRIANGLE}f 1 2 3\n"),
+    )
+    .unwrap();
+    let o = run_in(Some(&dir), &["depth", "--scene", "w.obj", "-o", "o.png"]);
+    assert!(o.status.success(), "{}", err(&o));
+    let warnings = warnings(&o);
+    assert_eq!(warnings.len(), 65);
+    assert_eq!(
+        warnings[64],
+        "warning: and 136 more warnings about the scene"
+    );
+}
+
+/// The handout's Figure 5 and Figure 7 as PNG files in `dir`.
+fn figures(dir: &Path) -> (PathBuf, PathBuf) {
+    let write = |stage, name: &str| {
+        let path = dir.join(name);
+        let frame = common::render(stage, false);
+        rasterlab::app::image_io::write_image(&frame, &path).unwrap();
+        path
+    };
+    (
+        write(rasterlab::StageName::Depth, "fig5.png"),
+        write(rasterlab::StageName::PixelLight, "fig7.png"),
+    )
+}
+
+#[test]
+fn check_writes_neither_over_a_screenshot_nor_one_heat_map_over_another() {
+    let dir = temp_dir("check-outputs");
+    let (fig5, _) = figures(&dir);
+    fs::copy(&fig5, dir.join("a.png")).unwrap();
+    let before = fs::read(dir.join("a.png")).unwrap();
+    // `--csv *.png`: the first screenshot taken as the table's name.
+    let o = run_in(
+        Some(&dir),
+        &["check", "--csv", "a.png", "fig5.png", "fig7.png"],
+    );
+    refused(&o, 2, "--csv a.png: the table's file name must end in .csv");
+    assert_eq!(fs::read(dir.join("a.png")).unwrap(), before);
+    fs::copy(&fig5, dir.join("y.csv")).unwrap();
+    let o = run_in(
+        Some(&dir),
+        &["check", "--csv", "y.csv", "y.csv", "fig7.png"],
+    );
+    refused(&o, 2, "--csv y.csv: it is one of the files to check");
+    // x.png and x.bmp handed in together: a heat map and expected image each.
+    fs::create_dir(dir.join("hx")).unwrap();
+    fs::copy(&fig5, dir.join("hx/x.png")).unwrap();
+    let frame = common::render(rasterlab::StageName::Depth, false);
+    rasterlab::app::image_io::write_image(&frame, &dir.join("hx/x.bmp")).unwrap();
+    let o = run_in(Some(&dir), &["check", "hx/x.png", "hx/x.bmp", "--out", "o"]);
+    assert!(o.status.success(), "{}", err(&o));
+    let mut written: Vec<String> = fs::read_dir(dir.join("o"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    written.sort();
+    assert_eq!(
+        written,
+        [
+            "x-2-expected.png",
+            "x-2-heat.png",
+            "x-expected.png",
+            "x-heat.png"
+        ]
+    );
+}
+
+#[test]
+fn a_cut_short_jpeg_is_refused_and_one_with_bytes_after_its_end_read() {
+    let dir = temp_dir("jpeg-cut");
+    let frame = common::render(rasterlab::StageName::Depth, false);
+    let rgb = image::RgbImage::from_fn(frame.width, frame.height, |x, y| {
+        let c = frame.color[(y * frame.width + x) as usize];
+        image::Rgb([(c >> 16) as u8, (c >> 8) as u8, c as u8])
+    });
+    rgb.save_with_format(dir.join("whole.jpg"), image::ImageFormat::Jpeg)
+        .unwrap();
+    let whole = fs::read(dir.join("whole.jpg")).unwrap();
+    fs::write(dir.join("cut.jpg"), &whole[..whole.len() / 2]).unwrap();
+    let o = run_in(Some(&dir), &["check", "cut.jpg"]);
+    refused(
+        &o,
+        2,
+        "cannot read cut.jpg: a damaged or cut-short JPEG image (its end marker is missing)",
+    );
+    let o = run_in(
+        Some(&dir),
+        &["pixel-light", "--texture", "cut.jpg", "-o", "t.png"],
+    );
+    refused(&o, 1, "a damaged or cut-short JPEG image");
+    // Some cameras append data after the end marker.
+    fs::write(
+        dir.join("more.jpg"),
+        [whole.as_slice(), b"trailer"].concat(),
+    )
+    .unwrap();
+    let o = run_in(Some(&dir), &["check", "more.jpg"]);
+    assert!(err(&o).is_empty(), "{}", err(&o));
+    let report = String::from_utf8_lossy(&o.stdout);
+    assert!(report.contains("Figure 5"), "{report}");
+}
+
+#[test]
+fn the_exact_figure_found_with_a_light_searched_from_elsewhere_passes() {
+    let dir = temp_dir("fit-light-status");
+    let (_, fig7) = figures(&dir);
+    let o = run(&[
+        "check",
+        fig7.to_str().unwrap(),
+        "--light",
+        "0,0,-3.001",
+        "--fit-light",
+    ]);
+    let report = String::from_utf8_lossy(&o.stdout);
+    assert!(report.contains("Every pixel matches"), "{report}");
+    assert_eq!(o.status.code(), Some(0), "{report}");
+}
+
+#[test]
+fn a_huge_unreadable_rows_line_is_named_not_echoed() {
+    let dir = temp_dir("rows-long");
+    let line = format!("Start: ({}1.5,0). End: (1,0).\n", "9".repeat(100_000));
+    fs::write(dir.join("rows.txt"), line).unwrap();
+    let o = run_in(
+        Some(&dir),
+        &["check", "rows", "rows.txt", "10,5", "5,10", "15,15"],
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", err(&o));
+    assert!(err(&o).len() < 400, "{}", err(&o).len());
+    assert!(err(&o).contains("...9999"), "{}", err(&o));
+}
+
+#[test]
+fn export_says_what_its_files_cannot_carry() {
+    let dir = temp_dir("export-names");
+    // ` lead.obj` would name ` lead.mtl`, which loading trims to `lead.mtl`.
+    let o = run_in(Some(&dir), &["export", "-o", " lead.obj"]);
+    refused(
+        &o,
+        1,
+        "the .mtl beside it would be named in a way the OBJ cannot name it",
+    );
+    assert!(fs::read_dir(&*dir).unwrap().next().is_none());
+    // A model's map_Kd is read, and not written back.
+    let texture = rasterlab::Frame {
+        width: 1,
+        height: 1,
+        color: vec![0x00ff_ffff],
+        depth: Vec::new(),
+    };
+    rasterlab::app::image_io::write_image(&texture, &dir.join("t.png")).unwrap();
+    fs::write(dir.join("m.mtl"), "newmtl m\nKd 1 1 1\nmap_Kd t.png\n").unwrap();
+    let model =
+        format!("mtllib m.mtl\n{TRIANGLE}vt 0 0\nvt 1 0\nvt 1 1\nusemtl m\nf 1/1 2/2 3/3\n");
+    fs::write(dir.join("m.obj"), model).unwrap();
+    let o = run_in(
+        Some(&dir),
+        &["export", "--scene", "m.obj", "-o", "back.obj"],
+    );
+    assert!(o.status.success(), "{}", err(&o));
+    assert_eq!(
+        err(&o).lines().next(),
+        Some("warning: the scene's textures are not written: its .mtl gives each material its Kd only")
+    );
 }

@@ -154,7 +154,6 @@ fn bad_files_are_one_line_errors() {
             "f 1 2 99999999999999999999\n",
             "line 4: index 99999999999999999999 is out of range",
         ),
-        ("line", "l 1 x\nf 1 2 3\n", "line 4: face corner 'x' is not"),
         (
             "range",
             "f 1 2 3\nf 1 2 4\nf 3 2 1\n",

@@ -3,6 +3,7 @@
 
 use crate::app::image_io::{write_image, WriteError};
 use crate::app::progress::Progress;
+use crate::app::streams::printable;
 use crate::measure::check::check_image;
 use crate::measure::check::image::{ImageCheck, Setup};
 use crate::measure::check::locate::{
@@ -192,6 +193,35 @@ fn one_colour(frame: &Frame) -> Option<[u8; 3]> {
     (!black && alike * 100 >= frame.color.len() * 99).then_some(colour)
 }
 
+/// The share of pixels within 8/255 of their right neighbour in every channel.
+/// A render is made of surfaces lit smoothly (even through JPEG compression or
+/// resizing, nearly every pixel is); noise or a photograph is not, and looking
+/// for the camera such an image was taken from would take minutes for nothing.
+fn smooth_share(frame: &Frame) -> f64 {
+    let w = frame.width as usize;
+    let pairs = frame.height as usize * w.saturating_sub(1);
+    if pairs == 0 {
+        return 1.0;
+    }
+    let near = |a: u32, b: u32| {
+        unpack(a)
+            .iter()
+            .zip(unpack(b))
+            .all(|(&a, b)| a.abs_diff(b) <= 8)
+    };
+    let smooth: usize = frame
+        .color
+        .chunks_exact(w)
+        .map(|row| row.windows(2).filter(|p| near(p[0], p[1])).count())
+        .sum();
+    smooth as f64 / pairs as f64
+}
+
+/// Below this [`smooth_share`], an image is not searched for a camera: the
+/// lab's renders and screenshots of them have 0.9 and more, uniform noise about
+/// 0.0003.
+const LEAST_SMOOTH: f64 = 0.5;
+
 /// Whether `check` found a lab 3 image.
 fn lab3(check: &ImageCheck) -> bool {
     check.fitted.is_some()
@@ -317,7 +347,9 @@ fn check_screenshot(
     // One colour in nearly every pixel: a camera against a single wall draws
     // that in any stage, so no camera is fitted to it.
     let flat = one_colour(&observed);
-    let has_walls = lit * 20 > observed.color.len() && flat.is_none();
+    let has_walls = lit * 20 > observed.color.len()
+        && flat.is_none()
+        && smooth_share(&observed) >= LEAST_SMOOTH;
     let walls_before = match has_walls {
         true => walls_in_place(&observed, &setup.camera),
         false => 0.0,
@@ -654,10 +686,12 @@ pub fn check_files(
 ) -> Vec<FileCheck> {
     use rayon::prelude::*;
     let common = common_folder(files);
+    let names = unique(files.iter().map(|f| heat_name(f, &common)).collect());
+    let files: Vec<(&PathBuf, &String)> = files.iter().zip(&names).collect();
     progress.begin(files.len());
     let progress = std::sync::Mutex::new(progress);
-    let one = |file: &PathBuf| {
-        let checked = check_one(file, &heat_name(file, &common), options);
+    let one = |&(file, name): &(&PathBuf, &String)| {
+        let checked = check_one(file, name, options);
         if let Ok(mut p) = progress.lock() {
             p.step(&format!("{}: {}", file.display(), checked.status.name()));
         }
@@ -714,7 +748,26 @@ pub fn check_many(
             csv.display()
         )));
     }
+    // `--csv *.png` takes the first screenshot as the table's name: refused
+    // rather than written over.
+    let named_csv = |c: &&Path| c.extension().is_some_and(|e| e.eq_ignore_ascii_case("csv"));
+    if let Some(csv) = csv.filter(|c| !named_csv(c)) {
+        return Err(CheckError::Usage(format!(
+            "--csv {}: the table's file name must end in .csv",
+            printable(&csv.display().to_string())
+        )));
+    }
     let files = submission_files(inputs)?;
+    let same = |a: &Path, b: &Path| match (a.canonicalize(), b.canonicalize()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
+    };
+    if let Some(csv) = csv.filter(|c| files.iter().any(|f| same(f, c))) {
+        return Err(CheckError::Usage(format!(
+            "--csv {}: it is one of the files to check",
+            printable(&csv.display().to_string())
+        )));
+    }
     if files.is_empty() {
         let names: Vec<String> = inputs.iter().map(|p| p.display().to_string()).collect();
         return Err(CheckError::Run(format!(
@@ -753,6 +806,24 @@ fn common_folder(files: &[PathBuf]) -> PathBuf {
 
 /// `file`'s path below `common`, without its extension, with `_` for each
 /// folder separator.
+/// `names` with a number added to each that an earlier one already has
+/// (`x.png` and `x.bmp` both give `x`: the second `x-2`).
+fn unique(names: Vec<String>) -> Vec<String> {
+    let mut taken = std::collections::HashSet::new();
+    names
+        .into_iter()
+        .map(|name| {
+            let mut candidate = name.clone();
+            let mut n = 1;
+            while !taken.insert(candidate.clone()) {
+                n += 1;
+                candidate = format!("{name}-{n}");
+            }
+            candidate
+        })
+        .collect()
+}
+
 fn heat_name(file: &Path, common: &Path) -> String {
     let inner = file.strip_prefix(common).unwrap_or(file).with_extension("");
     let parts: Vec<String> = inner
@@ -772,9 +843,9 @@ pub fn files_text(checks: &[FileCheck]) -> String {
     for c in checks {
         out.push_str(&format!(
             "{}\t{}\t{}\n",
-            c.file.display(),
+            printable(&c.file.display().to_string()),
             c.status.name(),
-            c.summary
+            printable(&c.summary)
         ));
     }
     let count = |s: Status| checks.iter().filter(|c| c.status == s).count();

@@ -539,7 +539,7 @@ impl<'a> Parts<'a> {
             let near = camera
                 .near
                 .map_or("--no-clip".to_string(), |n| format!("--near {n}"));
-            eprintln!(
+            crate::say!(
                 "scene {} ({} triangles): --camera {} --pitch {} --light {} --light-power {} {near}",
                 scene.name,
                 scene.mesh.faces.len(),
@@ -553,6 +553,9 @@ impl<'a> Parts<'a> {
     }
 }
 
+/// How many of a scene's warnings are printed.
+pub const MAX_WARNINGS: usize = 64;
+
 /// The scene a `--scene` spec names: a bad spec is a usage error, a model file
 /// that cannot be read a failure. Warnings about the file go to stderr.
 pub fn load_scene(spec: &str) -> Result<Scene, Failure> {
@@ -563,8 +566,12 @@ pub fn load_scene(spec: &str) -> Result<Scene, Failure> {
             Failure::Usage(e)
         }
     })?;
-    for warning in &scene.warnings {
-        eprintln!("warning: {warning}");
+    // A file can hold a warning's cause many thousand times over.
+    for warning in scene.warnings.iter().take(MAX_WARNINGS) {
+        crate::say!("warning: {}", super::streams::printable(warning));
+    }
+    if let Some(more) = scene.warnings.len().checked_sub(MAX_WARNINGS + 1) {
+        crate::say!("warning: and {} more warnings about the scene", more + 1);
     }
     Ok(scene)
 }

@@ -79,7 +79,7 @@ pub fn describe(path: &Path) -> String {
     if path.as_os_str() == "-" {
         "standard output".into()
     } else {
-        path.display().to_string()
+        super::streams::printable(&path.display().to_string())
     }
 }
 
@@ -168,6 +168,10 @@ pub fn write_with(
             let staged = stage(path, &target, write)?;
             commit(path, staged)
         }
+        Destination::Stdout if super::streams::stdout_closed() => Err(WriteError::new(
+            path,
+            "it was closed when rasterlab started",
+        )),
         Destination::Stdout => {
             let mut bytes = Vec::new();
             write(&mut bytes).map_err(|e| WriteError::new(path, e.to_string()))?;

@@ -13,6 +13,7 @@ pub mod parallel;
 pub mod parse;
 pub mod progress;
 pub mod report;
+pub mod streams;
 pub mod stress;
 pub mod viewer;
 
@@ -220,8 +221,17 @@ pub fn export_obj(mesh: &Mesh, path: &Path) -> Result<(), WriteError> {
     let (Some(_), Some(mtl_name)) = (path.file_name(), mtl_path.file_name()) else {
         return Err(WriteError::new(path, "not a file name"));
     };
-    let (obj, mtl) = crate::scene::obj_text(mesh, &mtl_name.to_string_lossy())
-        .map_err(|why| WriteError::new(path, why))?;
+    // `mtllib NAME` loads back only a name without spaces at its ends or
+    // control characters: the reader takes the rest of its line, trimmed.
+    let name = mtl_name.to_string_lossy();
+    if name.trim() != name || name.chars().any(char::is_control) {
+        return Err(WriteError::new(
+            path,
+            "the .mtl beside it would be named in a way the OBJ cannot name it (spaces at the ends, or a control character)",
+        ));
+    }
+    let (obj, mtl) =
+        crate::scene::obj_text(mesh, &name).map_err(|why| WriteError::new(path, why))?;
     image_io::write_all_or_none(&[(&mtl_path, mtl.as_bytes()), (path, obj.as_bytes())])
 }
 

@@ -205,7 +205,8 @@ pub fn point(s: &str) -> Result<(i32, i32), String> {
             .trim()
             .parse()
             .map_err(|_| format!("'{t}' is not a whole number in '{s}'"))?;
-        if v.abs() > MAX_ROWS_COORDINATE {
+        // `unsigned_abs`: `i32::MIN.abs()` wraps to itself, below the limit.
+        if v.unsigned_abs() > MAX_ROWS_COORDINATE as u32 {
             return Err(format!(
                 "coordinates must be within -{MAX_ROWS_COORDINATE}..{MAX_ROWS_COORDINATE}, got '{s}'"
             ));
@@ -267,5 +268,13 @@ mod tests {
         assert_eq!(point("-3,4"), Ok((-3, 4)));
         assert!(point("1.5,2").is_err());
         assert!(point("20000,0").is_err());
+        // The one value whose `abs` wraps round to a negative number.
+        let least = point("0,-2147483648").unwrap_err();
+        assert_eq!(
+            least,
+            "coordinates must be within -10000..10000, got '0,-2147483648'"
+        );
+        assert!(point("-2147483648,0").is_err());
+        assert_eq!(point("-10000,10000"), Ok((-10000, 10000)));
     }
 }

@@ -47,7 +47,7 @@ impl Progress {
     /// What is being done, when it has no steps to count.
     pub fn note(&self, what: &str) {
         if self.shown {
-            eprintln!("{what}");
+            crate::say!("{what}");
         }
     }
 
@@ -56,7 +56,7 @@ impl Progress {
         self.phase.done += 1;
         if self.shown {
             let p = &self.phase;
-            eprintln!("{}", line(p.done, p.total, what, p.start.elapsed()));
+            crate::say!("{}", line(p.done, p.total, what, p.start.elapsed()));
         }
     }
 }

@@ -287,7 +287,7 @@ fn free_capture_path(view: Figure) -> PathBuf {
 
 fn save(frame: &Frame, path: &Path) -> Result<(), String> {
     write_image(frame, path).map_err(|e| e.to_string())?;
-    eprintln!("saved {}", path.display());
+    crate::say!("saved {}", path.display());
     Ok(())
 }
 
@@ -430,7 +430,7 @@ pub fn run(options: Options) -> Result<Summary, String> {
                     };
                 }
                 Some(Action::Save) => save(&frame, &free_capture_path(view))?,
-                Some(Action::Help) => eprintln!("{}", controls::HELP),
+                Some(Action::Help) => crate::say!("{}", controls::HELP),
                 Some(Action::Quit) => quit = true,
                 None => {}
             }

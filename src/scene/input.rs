@@ -14,6 +14,19 @@ use std::io::{BufReader, Read};
 use std::os::unix::fs::{FileTypeExt, OpenOptionsExt};
 use std::path::Path;
 
+/// A name from a file as a message shows it: a long one (a path of thousands
+/// of parts, say) cut in the middle.
+pub fn shortened(name: &str) -> String {
+    const SHOWN: usize = 60;
+    let chars = name.chars().count();
+    if chars <= 2 * SHOWN {
+        return name.to_string();
+    }
+    let head: String = name.chars().take(SHOWN).collect();
+    let tail: String = name.chars().skip(chars - SHOWN).collect();
+    format!("{head}...{tail}")
+}
+
 /// Opens `path` for reading if it is a regular file; the error says why not (no
 /// path in it: the caller names the file).
 pub fn open_regular(path: &Path) -> Result<File, String> {
@@ -108,7 +121,83 @@ pub fn read_image_with_format(
     reader.limits(limits);
     let format = reader.format();
     let image = reader.decode().map_err(|e| damaged(format, e))?;
+    // The JPEG decoder fills a cut-short image with grey and says nothing.
+    if format == Some(image::ImageFormat::Jpeg) && !jpeg_ends(path)? {
+        return Err("a damaged or cut-short JPEG image (its end marker is missing)".into());
+    }
     Ok((image, format))
+}
+
+/// Whether the JPEG at `path` reaches its end marker (`FF D9`), read segment by
+/// segment (so that a thumbnail inside a segment, a whole JPEG of its own, is
+/// passed over) and through each scan, where a byte `FF` is followed by `00` or
+/// a restart marker. Bytes after the end marker (some cameras add data) are
+/// allowed.
+fn jpeg_ends(path: &Path) -> Result<bool, String> {
+    let mut bytes = BufReader::new(open_regular(path)?).bytes();
+    let mut next = || -> Result<Option<u8>, String> {
+        bytes
+            .next()
+            .transpose()
+            .map_err(|e| format!("cannot read: {e}"))
+    };
+    // The marker read last, if the scan before it ended on one.
+    let mut pending = None;
+    loop {
+        let marker = match pending.take() {
+            Some(m) => m,
+            None => {
+                // Up to the next FF, then past any fill bytes FF.
+                loop {
+                    match next()? {
+                        None => return Ok(false),
+                        Some(0xFF) => break,
+                        Some(_) => {}
+                    }
+                }
+                let mut m = 0xFF;
+                while m == 0xFF {
+                    let Some(b) = next()? else { return Ok(false) };
+                    m = b;
+                }
+                m
+            }
+        };
+        match marker {
+            0xD9 => return Ok(true),
+            0xD8 | 0xD0..=0xD7 | 0x01 | 0x00 => continue,
+            _ => {}
+        }
+        let (Some(high), Some(low)) = (next()?, next()?) else {
+            return Ok(false);
+        };
+        let length = u16::from_be_bytes([high, low]);
+        for _ in 2..length {
+            if next()?.is_none() {
+                return Ok(false);
+            }
+        }
+        if marker != 0xDA {
+            continue;
+        }
+        // The scan's data, up to the marker after it.
+        pending = loop {
+            match next()? {
+                None => return Ok(false),
+                Some(0xFF) => {
+                    let mut m = 0xFF;
+                    while m == 0xFF {
+                        let Some(b) = next()? else { return Ok(false) };
+                        m = b;
+                    }
+                    if !(m == 0x00 || (0xD0..=0xD7).contains(&m)) {
+                        break Some(m);
+                    }
+                }
+                Some(_) => {}
+            }
+        };
+    }
 }
 
 /// A reader of the image at `path`, its format known from its first bytes,

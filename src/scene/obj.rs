@@ -28,7 +28,7 @@
 //!   Points and lines (`f 1`, `f 1 2`, `l 1 2`) are skipped.
 
 use super::cornell::WHITE;
-use super::input::open_regular;
+use super::input::{open_regular, shortened};
 use crate::extensions::texture::Maps;
 use crate::pipeline::mesh::{face_normal, Face, Material, Mesh};
 use glam::{Vec2, Vec3};
@@ -48,6 +48,15 @@ pub const MAX_VERTICES: usize = 3 * MAX_TRIANGLES;
 /// The longest line read: a line is held whole, so a file without newlines
 /// (`/dev/zero`, a binary file) must not be.
 pub const MAX_LINE_BYTES: usize = 1 << 20;
+
+/// The most material libraries a model may name, and materials they may define
+/// in all.
+pub const MAX_LIBRARIES: usize = 64;
+pub const MAX_MATERIALS: usize = 65_536;
+
+/// The most texels a model's textures may hold in all: as many as the
+/// largest one texture ([`super::texture::MAX_TEXTURE_SIDE`] a side).
+pub const MAX_MODEL_TEXELS: u64 = 16384 * 16384;
 
 /// The half turn about x between a file's axes and ours; its own inverse.
 fn flip(v: Vec3) -> Vec3 {
@@ -70,6 +79,10 @@ pub fn read_obj(path: &Path) -> Result<(Mesh, Maps, Vec<String>), String> {
     let dir = path.parent().unwrap_or(Path::new(""));
     let mtl_error = RefCell::new(None);
     let mtl_warnings = RefCell::new(Vec::new());
+    // Each library read once, however often it is named (tobj would keep
+    // every reading's materials), and at most MAX_LIBRARIES of them.
+    let read_libraries = RefCell::new(Vec::<PathBuf>::new());
+    let materials_left = RefCell::new(MAX_MATERIALS);
     let options = tobj::LoadOptions {
         triangulate: true,
         single_index: true,
@@ -88,11 +101,25 @@ pub fn read_obj(path: &Path) -> Result<(Mesh, Maps, Vec<String>), String> {
         for (part, found) in libraries {
             let Some(found) = found else {
                 warnings.push(format!(
-                    "material library {part} is not there: its materials are left out"
+                    "material library {} is not there: its materials are left out",
+                    shortened(part)
                 ));
                 continue;
             };
-            let (more, more_names) = load_mtl(&found).map_err(|why| {
+            let mut read = read_libraries.borrow_mut();
+            if read.contains(&found) {
+                continue;
+            }
+            if read.len() == MAX_LIBRARIES {
+                warnings.push(format!(
+                    "material library {}: more than {MAX_LIBRARIES} libraries: left out",
+                    shortened(part)
+                ));
+                continue;
+            }
+            read.push(found.clone());
+            let mut left = materials_left.borrow_mut();
+            let (more, more_names) = load_mtl(&found, &mut left, &mut warnings).map_err(|why| {
                 mtl_error.borrow_mut().get_or_insert(why);
                 tobj::LoadError::GenericFailure
             })?;
@@ -132,6 +159,13 @@ pub fn read_obj(path: &Path) -> Result<(Mesh, Maps, Vec<String>), String> {
     let (images, found_elsewhere) = load_diffuse_textures(&materials, &maps, dir).map_err(fail)?;
     let mut warnings = mtl_warnings.into_inner();
     warnings.extend(reader.warnings(&materials));
+    let some_uvs = models.iter().any(|m| !m.mesh.texcoords.is_empty());
+    if some_uvs && mesh.uvs.is_empty() && maps.iter().any(Option::is_some) {
+        warnings.push(
+            "texture coordinates on only some vertices: the map_Kd textures are not drawn (Kd is)"
+                .into(),
+        );
+    }
     warnings.extend(found_elsewhere);
     for (m, map) in materials.iter().zip(&maps) {
         if let Some(kd) = m.diffuse {
@@ -222,6 +256,30 @@ fn load_diffuse_textures(
     let mut warnings = Vec::new();
     let mut images = Maps::default();
     let mut loaded: HashMap<&str, u32> = HashMap::new();
+    // Each texel is held as three floats: the textures in all are bounded, as
+    // one texture's sides are, from their headers before any is read.
+    let mut texels = 0u64;
+    let mut sized = std::collections::HashSet::new();
+    for (m, map) in materials.iter().zip(maps) {
+        let Some(name) = map.as_ref().map(|t| t.file.as_str()) else {
+            continue;
+        };
+        if name.is_empty() || !sized.insert(name) {
+            continue;
+        }
+        let Some(path) = file_beside(dir, name, "", &mut Vec::new()) else {
+            continue;
+        };
+        let (w, h) = super::input::image_size(&path).unwrap_or((0, 0));
+        texels += w as u64 * h as u64;
+        if texels > MAX_MODEL_TEXELS {
+            return Err(format!(
+                "material {}: map_Kd {}: the model's textures would hold more than {MAX_MODEL_TEXELS} texels in all: refused",
+                m.name,
+                shortened(name)
+            ));
+        }
+    }
     for (i, (m, map)) in materials.iter().zip(maps).enumerate() {
         let Some(map) = map else {
             continue;
@@ -237,7 +295,8 @@ fn load_diffuse_textures(
                 // A model shared without its textures still draws.
                 let Some(path) = file_beside(dir, name, &what, &mut warnings) else {
                     warnings.push(format!(
-                        "{what} {name} is not there: its Kd is drawn instead"
+                        "{what} {} is not there: its Kd is drawn instead",
+                        shortened(name)
                     ));
                     continue;
                 };
@@ -268,7 +327,8 @@ fn file_beside(dir: &Path, name: &str, what: &str, warnings: &mut Vec<String>) -
     }
     let found = elsewhere(dir, name)?;
     warnings.push(format!(
-        "{what} {name} is not there: read {} instead",
+        "{what} {} is not there: read {} instead",
+        shortened(name),
         found.display()
     ));
     Some(found)
@@ -280,7 +340,10 @@ fn elsewhere(dir: &Path, name: &str) -> Option<PathBuf> {
         .split(['/', '\\'])
         .filter(|p| !p.is_empty() && !p.ends_with(':'))
         .collect();
-    (0..parts.len()).find_map(|first| {
+    // A path from the author's disk ends in the few parts that can be beside
+    // the model; each tail tried costs a look through its folders.
+    let first = parts.len().saturating_sub(MAX_TAIL_PARTS);
+    (first..parts.len()).find_map(|first| {
         let tail = &parts[first..];
         let exact = tail.iter().fold(dir.to_path_buf(), |p, part| p.join(part));
         if exact.is_file() {
@@ -304,6 +367,9 @@ fn elsewhere(dir: &Path, name: &str) -> Option<PathBuf> {
             .filter(|p| p.is_file())
     })
 }
+
+/// How many of a name's last parts [`file_beside`] looks for beside the model.
+const MAX_TAIL_PARTS: usize = 8;
 
 /// How many entries of a folder [`file_beside`] looks through for a name.
 const MAX_FOLDER_ENTRIES: usize = 10_000;
@@ -331,18 +397,28 @@ fn libraries_named<'n>(
 }
 
 /// Reads one MTL file; the error names it and, where known, the line.
-fn load_mtl(path: &Path) -> Result<(Vec<tobj::Material>, HashMap<String, usize>), String> {
+/// The statements it leaves out are named in `warnings`; it may define at most
+/// `materials_left` materials, and takes those it defines from it.
+fn load_mtl(
+    path: &Path,
+    materials_left: &mut usize,
+    warnings: &mut Vec<String>,
+) -> Result<(Vec<tobj::Material>, HashMap<String, usize>), String> {
     let fail = |why: String| format!("material library {}: {why}", path.display());
     let file = open_regular(path).map_err(fail)?;
     let mut reader = Lines::new(BufReader::new(file), Kind::Mtl);
-    tobj::load_mtl_buf(&mut reader).map_err(|e| {
+    reader.materials_left = *materials_left;
+    let loaded = tobj::load_mtl_buf(&mut reader).map_err(|e| {
         fail(
             reader
                 .stop
                 .take()
                 .unwrap_or_else(|| format!("line {}: {e}", reader.line)),
         )
-    })
+    })?;
+    *materials_left = reader.materials_left;
+    warnings.extend(reader.unsupported.iter().map(|w| fail(w.clone())));
+    Ok(loaded)
 }
 
 /// Our mesh from tobj's models: the map to our axes, one material per MTL material
@@ -562,6 +638,12 @@ struct Lines<R> {
     usemtl: Vec<(String, usize)>,
     /// Lines other than comments read as Latin-1: the first one's number, and how many.
     latin1: (usize, usize),
+    /// Polylines (`l`), which are not drawn: the first one's line, and how many.
+    polylines: (usize, usize),
+    /// In an MTL file: how many more materials it may define, and the
+    /// statements of the MTL format it leaves out, each with its line.
+    materials_left: usize,
+    unsupported: Vec<String>,
 }
 
 /// How many material names are remembered for the warnings.
@@ -580,6 +662,9 @@ impl<R: BufRead> Lines<R> {
             short_faces: (0, 0),
             usemtl: Vec::new(),
             latin1: (0, 0),
+            polylines: (0, 0),
+            materials_left: MAX_MATERIALS,
+            unsupported: Vec::new(),
         }
     }
 
@@ -640,7 +725,53 @@ impl<R: BufRead> Lines<R> {
             "not UTF-8: read as Latin-1, a character a byte",
             "lines",
         ));
+        out.extend(first(
+            self.polylines,
+            "a polyline (l) is not drawn: left out",
+            "lines",
+        ));
         out
+    }
+
+    /// A statement as tobj is given it: in an OBJ file, a polyline left out
+    /// (tobj would fill it as a face) and a vertex's colour (`v x y z r g b`,
+    /// which tobj wants on every vertex or none) dropped; in an MTL file, only
+    /// what is drawn from (`newmtl`, `Kd`, `map_Kd`), so that a statement of
+    /// the format read otherwise (`Ka spectral`, `d -halo`, `illum 2.0`) cannot
+    /// stop the model loading. A statement left out stays as a comment, so
+    /// that the lines keep their numbers.
+    fn statement(&mut self, line: String, number: usize) -> String {
+        let mut words = line.split_whitespace();
+        let first = words.next().unwrap_or("");
+        let left_out = "#\n".to_string();
+        match (self.kind, first) {
+            (Kind::Obj, "l") => {
+                if self.polylines.1 == 0 {
+                    self.polylines.0 = number;
+                }
+                self.polylines.1 += 1;
+                left_out
+            }
+            (Kind::Obj, "v") if words.clone().count() >= 6 => {
+                let xyz: Vec<&str> = words.take(3).collect();
+                format!("v {}\n", xyz.join(" "))
+            }
+            (Kind::Obj, _) => line,
+            (Kind::Mtl, "newmtl" | "map_Kd") => line,
+            (Kind::Mtl, "Kd") => match words.next() {
+                Some(form @ ("spectral" | "xyz")) => {
+                    if self.unsupported.len() < MAX_NAMES {
+                        self.unsupported.push(format!(
+                            "line {number}: Kd {form} is not supported: left out"
+                        ));
+                    }
+                    left_out
+                }
+                _ => one_number_colour(&line).unwrap_or(line),
+            },
+            (Kind::Mtl, _) if first.starts_with('#') || first.is_empty() => line,
+            (Kind::Mtl, _) => left_out,
+        }
     }
 
     fn check(&mut self, line: &str) -> Result<(), String> {
@@ -657,7 +788,6 @@ impl<R: BufRead> Lines<R> {
                 }
                 return self.check_face(words);
             }
-            (Kind::Obj, "l") => return self.check_face(words),
             (Kind::Obj, "usemtl") => {
                 let name = line
                     .trim()
@@ -681,10 +811,19 @@ impl<R: BufRead> Lines<R> {
                     ));
                 }
             }
-            (Kind::Mtl, "Ka" | "Kd" | "Ks" | "Ke") if words.clone().count() < 3 => {
+            (Kind::Mtl, "Kd") if words.clone().count() < 3 => {
                 return Err(format!("{first} needs three numbers (or one, for a grey)"))
             }
-            (Kind::Mtl, "Ka" | "Kd" | "Ks" | "Ke") => {}
+            (Kind::Mtl, "Kd") => {}
+            (Kind::Mtl, "newmtl") => {
+                if self.materials_left == 0 {
+                    return Err(format!(
+                        "more than {MAX_MATERIALS} materials: the model is too large to load"
+                    ));
+                }
+                self.materials_left -= 1;
+                return Ok(());
+            }
             _ => return Ok(()),
         }
         // Words that are not numbers at all are tobj's to report.
@@ -735,6 +874,36 @@ impl<R: BufRead> Lines<R> {
     }
 }
 
+/// Reads one line of `inner` into `bytes`, ended by `\n`, `\r\n` or a lone
+/// `\r` (as old Mac programs write them; read as `\n`), and stops once past
+/// `limit` bytes. Returns how many bytes it put in `bytes`.
+fn read_line_ending(
+    inner: &mut impl BufRead,
+    limit: usize,
+    bytes: &mut Vec<u8>,
+) -> io::Result<usize> {
+    loop {
+        let buf = inner.fill_buf()?;
+        if buf.is_empty() || bytes.len() > limit {
+            return Ok(bytes.len());
+        }
+        let Some(end) = buf.iter().position(|&b| b == b'\n' || b == b'\r') else {
+            let n = buf.len();
+            bytes.extend_from_slice(buf);
+            inner.consume(n);
+            continue;
+        };
+        let lone_return = buf[end] == b'\r';
+        bytes.extend_from_slice(&buf[..end]);
+        inner.consume(end + 1);
+        if lone_return && inner.fill_buf()?.first() == Some(&b'\n') {
+            inner.consume(1);
+        }
+        bytes.push(b'\n');
+        return Ok(bytes.len());
+    }
+}
+
 fn not_a_corner(corner: &str) -> String {
     format!("face corner '{corner}' is not v, v/vt, v//vn or v/vt/vn (whole-number indices)")
 }
@@ -763,38 +932,50 @@ impl<R: BufRead> BufRead for Lines<R> {
     /// tobj reads with `lines()`, which reads each line through this: at most
     /// [`MAX_LINE_BYTES`] of it.
     fn read_line(&mut self, text: &mut String) -> io::Result<usize> {
-        let mut bytes = Vec::new();
-        let read = (&mut self.inner)
-            .take(MAX_LINE_BYTES as u64 + 1)
-            .read_until(b'\n', &mut bytes);
         let number = self.line + 1;
-        let line = match read {
-            Err(e) => Err(e.to_string()),
-            Ok(n) if n > MAX_LINE_BYTES => Err(format!(
-                "longer than {MAX_LINE_BYTES} bytes: not a model file, or a broken one"
-            )),
-            Ok(_) => Ok(
-                String::from_utf8(bytes).unwrap_or_else(|e| self.latin1(e.into_bytes(), number))
-            ),
-        };
-        let mut line = match line {
-            Ok(line) => line,
-            Err(why) => {
-                self.stop = Some(format!("line {number}: {why}"));
-                return Err(io::Error::other(why));
+        let mut line = String::new();
+        let mut more = 0; // lines joined to the first by a closing backslash
+        loop {
+            let mut bytes = Vec::new();
+            let read = read_line_ending(&mut self.inner, MAX_LINE_BYTES - line.len(), &mut bytes);
+            let part = match read {
+                Err(e) => Err(e.to_string()),
+                Ok(n) if line.len() + n > MAX_LINE_BYTES => Err(format!(
+                    "longer than {MAX_LINE_BYTES} bytes: not a model file, or a broken one"
+                )),
+                Ok(_) => Ok(String::from_utf8(bytes)
+                    .unwrap_or_else(|e| self.latin1(e.into_bytes(), number + more))),
+            };
+            match part {
+                Ok(part) => line.push_str(&part),
+                Err(why) => {
+                    self.stop = Some(format!("line {}: {why}", number + more));
+                    return Err(io::Error::other(why));
+                }
             }
-        };
+            // `v 1 2 \` continues on the next line, as the format allows.
+            match line.trim_end().strip_suffix('\\') {
+                Some(joined) if !line.trim_start().starts_with('#') => {
+                    line = format!("{joined} ");
+                    more += 1;
+                }
+                _ => break,
+            }
+        }
+        if more > 0 && !line.ends_with('\n') {
+            line.push('\n');
+        }
         // A byte-order mark, as Notepad saves UTF-8, would hide the first
         // line's keyword from tobj (a vertex or `newmtl` lost silently).
         if self.line == 0 && line.starts_with('\u{feff}') {
             line.drain(..'\u{feff}'.len_utf8());
         }
-        let line = match self.kind {
-            Kind::Mtl => one_number_colour(&line).unwrap_or(line),
-            Kind::Obj => line,
+        let line = match line.is_empty() {
+            true => line,
+            false => self.statement(line, number),
         };
         if !line.is_empty() {
-            self.line = number;
+            self.line = number + more;
             if let Err(why) = self.check(&line) {
                 self.stop = Some(format!("line {number}: {why}"));
                 return Err(io::Error::other(why));

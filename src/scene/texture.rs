@@ -58,26 +58,38 @@ pub const MAX_TEXTURE_SIDE: u32 = 16384;
 /// The image at `path` as a texture of linear reflectances (each 8-bit channel
 /// over 255). The error is one line naming the file.
 pub fn load_texture(path: &Path) -> Result<Texture, String> {
+    use image::{DynamicImage, GenericImageView};
     let shown = path.display();
     let limit = super::input::ImageLimit {
         max_side: MAX_TEXTURE_SIDE,
         what: "a texture",
     };
-    let image = super::input::read_image(path, limit)
-        .map_err(|e| format!("texture {shown}: {e}"))?
-        .to_rgb8();
-    let (width, height) = image.dimensions();
-    let mut texels = Vec::new();
+    let (width, height) =
+        super::input::image_size(path).map_err(|e| format!("texture {shown}: {e}"))?;
     let n = width as usize * height as usize;
-    texels.try_reserve_exact(n).map_err(|_| {
-        let need = crate::pipeline::target::megabytes(n * std::mem::size_of::<Vec3>());
+    // The decoded image (at most 8 bytes a pixel) and the texels, asked for
+    // before decoding: an allocation the decoder cannot make aborts.
+    let out_of_memory = |bytes: usize| {
+        let need = crate::pipeline::target::megabytes(bytes);
         format!("texture {shown}: out of memory: its {width}x{height} texels need {need}")
-    })?;
-    texels.extend(
-        image
-            .pixels()
-            .map(|p| Vec3::from(p.0.map(|c| c as f32 / 255.0))),
-    );
+    };
+    let both = n * (8 + std::mem::size_of::<Vec3>());
+    Vec::<u8>::new()
+        .try_reserve_exact(both)
+        .map_err(|_| out_of_memory(both))?;
+    let image =
+        super::input::read_image(path, limit).map_err(|e| format!("texture {shown}: {e}"))?;
+    let mut texels = Vec::new();
+    texels
+        .try_reserve_exact(n)
+        .map_err(|_| out_of_memory(n * std::mem::size_of::<Vec3>()))?;
+    let texel = |c: [u8; 3]| Vec3::from(c.map(|c| c as f32 / 255.0));
+    // Converted a pixel at a time: a converted copy of a large image is one
+    // more allocation that could abort.
+    match &image {
+        DynamicImage::ImageRgb8(rgb) => texels.extend(rgb.pixels().map(|p| texel(p.0))),
+        other => texels.extend(other.pixels().map(|(_, _, p)| texel([p[0], p[1], p[2]]))),
+    }
     Texture::new(width, height, texels)
         .ok_or_else(|| format!("texture {shown}: the image is empty"))
 }

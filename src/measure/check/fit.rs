@@ -10,8 +10,8 @@ use super::image::{
 use super::probe::{LightProbe, COARSE_STRIDE, LIGHT_STRIDE};
 use super::student::Geometry;
 use crate::pipeline::target::unpack;
-use crate::pipeline::Frame;
 use crate::pipeline::StageName;
+use crate::pipeline::{Frame, Light};
 use glam::Vec3;
 
 /// Least squares for P and N over the interior pixels' unclamped channels:
@@ -588,7 +588,14 @@ pub fn check_image(observed: &Frame, setup: &Setup) -> ImageCheck {
         },
         ..Hypothesis::handout(stage)
     };
-    let handout_measured = measure(handout, &setup.mesh, &setup.camera, setup.light);
+    // The handout's figure is lit from the handout's light: where the search
+    // found it there, the figure is measured from it, not from where it began.
+    let handout_light = Light::handout().position;
+    let light = match setup.fit_light && best.light == handout_light {
+        true => handout_light,
+        false => setup.light,
+    };
+    let handout_measured = measure(handout, &setup.mesh, &setup.camera, light);
     let before = errors(
         &handout_measured,
         observed,

@@ -7,6 +7,7 @@ use super::walk::Walk;
 use crate::pipeline::interpolate::Pixel;
 use crate::pipeline::raster::rows::{compute_polygon_rows_by, Rows};
 use crate::pipeline::raster::Bounds;
+use crate::scene::input::shortened;
 use std::fmt::Write as _;
 
 /// One printed row: the start (x, y) and the end (x, y).
@@ -99,7 +100,7 @@ pub fn parse_rows_skipping(text: &str) -> Result<(Vec<Row>, usize), String> {
                 i + 1,
                 found.len(),
                 if found.len() == 1 { "" } else { "s" },
-                line.trim()
+                shortened(line.trim())
             ));
         }
         numbers.extend(found);
@@ -122,7 +123,7 @@ fn integers(line: &str) -> Result<Vec<i32>, String> {
         if current.chars().any(|c| c.is_ascii_digit()) {
             let v = current
                 .parse::<i32>()
-                .map_err(|_| format!("'{current}' is not a whole number of pixels"))?;
+                .map_err(|_| format!("'{}' is not a whole number of pixels", shortened(current)))?;
             out.push(v);
         }
         current.clear();
@@ -152,7 +153,10 @@ fn integers(line: &str) -> Result<Vec<i32>, String> {
                     break;
                 }
             }
-            return Err(format!("'{token}' is not a whole number of pixels"));
+            return Err(format!(
+                "'{}' is not a whole number of pixels",
+                shortened(&token)
+            ));
         }
         if c.is_ascii_digit() || (c == '-' && current.is_empty()) {
             current.push(c);
