@@ -215,7 +215,10 @@ fn run(cli: Cli) -> Result<(), Failure> {
             }
             app::export_obj(&scene.mesh, &a.out)?;
             let n = scene.mesh.faces.len();
-            say!("wrote {} and its .mtl ({n} triangles)", a.out.display());
+            say!(
+                "wrote {} and its .mtl ({n} triangles)",
+                app::image_io::describe(&a.out)
+            );
             Ok(())
         }
         Command::Animate(a) => {
@@ -277,12 +280,18 @@ fn main() -> ExitCode {
             return ExitCode::from(2);
         }
         Err(e) if !e.use_stderr() => {
-            // --help and --version: clap prints them in full.
-            let _ = e.print();
-            return ExitCode::SUCCESS;
+            // --help and --version: clap prints them in full, on stdout.
+            let printed = e.print().is_ok() && !app::streams::stdout_closed();
+            return match printed {
+                true => ExitCode::SUCCESS,
+                false => ExitCode::from(1),
+            };
         }
         Err(e) => {
-            say!("{} (see 'rasterlab --help')", app::cli::one_line(&e));
+            say!(
+                "{} (see 'rasterlab --help')",
+                printable(&app::cli::one_line(&e))
+            );
             return ExitCode::from(2);
         }
     };

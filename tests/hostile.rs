@@ -1018,3 +1018,136 @@ fn export_says_what_its_files_cannot_carry() {
         Some("warning: the scene's textures are not written: its .mtl gives each material its Kd only")
     );
 }
+
+// A third look, at the second review's fixes and beyond them.
+
+#[test]
+fn a_scene_named_with_control_characters_is_shown_escaped() {
+    let dir = temp_dir("escaped-name");
+    let name = "x\u{1b}]0;PWN\u{7}\u{1b}[2J.obj";
+    fs::write(dir.join(name), format!("{TRIANGLE}f 1 2 3\n")).unwrap();
+    let o = run_in(Some(&dir), &["depth", "--scene", name, "-o", "d.png"]);
+    assert!(o.status.success(), "{}", err(&o));
+    assert!(!o.stderr.contains(&0x1b) && !o.stderr.contains(&0x07));
+    assert!(err(&o).starts_with("scene x\\u{1b}]0;PWN\\u{7}\\u{1b}[2J (1 triangles)"));
+    let o = run_in(Some(&dir), &["depth", "--size", "5\rxa", "-o", "d.png"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(!o.stderr.contains(&b'\r'), "{}", err(&o));
+}
+
+#[test]
+fn a_fifo_read_slowly_gets_the_whole_image() {
+    let dir = temp_dir("slow-fifo");
+    let fifo_path = dir.join("fo");
+    fifo(&dir, "fo");
+    // A reader that opens at once and reads only later: the image (66 928
+    // bytes) is more than a pipe holds, and the writer must wait for it.
+    let reader = {
+        let path = fifo_path.clone();
+        std::thread::spawn(move || {
+            let mut f = fs::File::open(path).unwrap();
+            std::thread::sleep(Duration::from_millis(500));
+            let mut bytes = Vec::new();
+            std::io::Read::read_to_end(&mut f, &mut bytes).unwrap();
+            bytes
+        })
+    };
+    std::thread::sleep(Duration::from_millis(100));
+    let o = run_in(Some(&dir), &["depth", "--size", "2000x2000", "-o", "fo"]);
+    assert!(o.status.success(), "{}", err(&o));
+    let through_fifo = reader.join().unwrap();
+    let o = run_in(Some(&dir), &["depth", "--size", "2000x2000", "-o", "d.png"]);
+    assert!(o.status.success(), "{}", err(&o));
+    assert!(through_fifo.len() > 65_536);
+    assert_eq!(through_fifo, fs::read(dir.join("d.png")).unwrap());
+}
+
+#[test]
+fn what_is_made_from_a_frame_is_counted_in_the_memory_asked_for() {
+    let dir = temp_dir("memory-more");
+    // 12000 x 12000 at 11 bytes a pixel fits in 2 GB; its depth buffer's
+    // picture (4 more) does not, nor depth of field's sums (24 more) at 9000.
+    for (args, size) in [
+        ("depth --buffer --size 12000x12000 -o b.bmp", "12000x12000"),
+        (
+            "pixel-light --dof 4,0.05 --size 9000x9000 -o b.bmp",
+            "9000x9000",
+        ),
+    ] {
+        let o = run_in_2gb(&dir, args);
+        refused(
+            &o,
+            1,
+            &format!("out of memory: drawing and writing a {size} image needs"),
+        );
+        assert!(fs::read_dir(&*dir).unwrap().next().is_none(), "{args}");
+    }
+}
+
+#[test]
+fn the_files_of_a_model_are_bounded_in_lines_and_a_bare_map_kd_left_out() {
+    let dir = temp_dir("model-bounds");
+    // Four million blank lines and one more: a library past its bound.
+    let blank = "\n".repeat(1 << 22);
+    fs::write(
+        dir.join("blank.mtl"),
+        format!("newmtl m\n{blank}Kd 1 1 1\n"),
+    )
+    .unwrap();
+    let path = dir.join("m.obj");
+    fs::write(&path, format!("mtllib blank.mtl\n{TRIANGLE}f 1 2 3\n")).unwrap();
+    let e = rasterlab::scene::read_obj(&path).map(|_| ()).unwrap_err();
+    assert!(
+        e.ends_with("line 4194306: more than 64 MB or 4194304 lines: too large to load"),
+        "{e}"
+    );
+    fs::write(dir.join("bare.mtl"), "newmtl m\nKd 1 0 0\nmap_Kd\n").unwrap();
+    fs::write(
+        &path,
+        format!("mtllib bare.mtl\n{TRIANGLE}usemtl m\nf 1 2 3\n"),
+    )
+    .unwrap();
+    let (mesh, _, warnings) = rasterlab::scene::read_obj(&path).unwrap();
+    assert_eq!(mesh.materials[0].color, glam::Vec3::X);
+    assert!(
+        warnings[0].ends_with("bare.mtl: line 3: map_Kd names no file: left out"),
+        "{warnings:?}"
+    );
+    // A texture past the side allowed is refused for that, not for memory.
+    png_header(&dir.join("huge.png"), 20000, 20000);
+    let o = run_in_2gb(&dir, "pixel-light --texture huge.png -o x.png");
+    refused(
+        &o,
+        1,
+        "20000x20000 is too large for a texture (at most 16384",
+    );
+}
+
+#[test]
+fn a_report_without_light_compares_no_error_to_none() {
+    let dir = temp_dir("report-unlit");
+    let o = run_in(
+        Some(&dir),
+        &["report", "--quick", "--light-power", "0", "--out", "r"],
+    );
+    assert!(o.status.success(), "{}", err(&o));
+    let report = fs::read_to_string(dir.join("r/report.md")).unwrap();
+    // The tables' PSNR of an image equal to its reference is infinite; the
+    // sentences compare errors in words.
+    assert!(!report.contains("inf times"), "{report}");
+    assert!(report.contains("its interior error is the same (RMSE 0.00 against 0.00)"));
+    assert!(report.contains("(Figure 8) leaves the interior error as it is (RMSE 0.00"));
+}
+
+#[test]
+fn help_that_cannot_be_written_fails() {
+    let dir = temp_dir("help-full");
+    for script in [
+        "$B --help >/dev/full",
+        "$B depth --help >/dev/full",
+        "$B --help >&-",
+    ] {
+        let o = shell(&dir, script);
+        assert_eq!(o.status.code(), Some(1), "{script}");
+    }
+}

@@ -541,7 +541,7 @@ impl<'a> Parts<'a> {
                 .map_or("--no-clip".to_string(), |n| format!("--near {n}"));
             crate::say!(
                 "scene {} ({} triangles): --camera {} --pitch {} --light {} --light-power {} {near}",
-                scene.name,
+                super::streams::printable(&scene.name),
                 scene.mesh.faces.len(),
                 v(camera.position),
                 c.pitch.unwrap_or(scene.pitch),

@@ -191,7 +191,20 @@ pub fn write_with(
                 .write(true)
                 .custom_flags(libc::O_NONBLOCK)
                 .open(&target)
-                .map_err(|e| WriteError::new(path, e.to_string()))?;
+                .map_err(|e| match e.raw_os_error() {
+                    Some(libc::ENXIO) => WriteError::new(path, "a FIFO that nothing reads"),
+                    _ => WriteError::new(path, e.to_string()),
+                })?;
+            // Opened: now a reader slower than the writer is waited for, not
+            // left with the image's first 64 KB.
+            let fd = std::os::fd::AsRawFd::as_raw_fd(&f);
+            // SAFETY: F_GETFL and F_SETFL change only the flags of `f`'s descriptor.
+            unsafe {
+                let flags = libc::fcntl(fd, libc::F_GETFL);
+                if flags != -1 {
+                    libc::fcntl(fd, libc::F_SETFL, flags & !libc::O_NONBLOCK);
+                }
+            }
             f.write_all(&bytes)
                 .map_err(|e| WriteError::new(path, e.to_string()))
         }

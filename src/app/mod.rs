@@ -173,7 +173,9 @@ pub fn render_to_file<'a>(
     buffer: bool,
 ) -> Result<(Option<Timing>, Stats), WriteError> {
     let model = model.into();
-    let frame = frame_for(settings, out)?;
+    // The depth buffer's picture is drawn on a canvas of its own (4 bytes a pixel).
+    let picture = if buffer { 4 } else { 0 };
+    let frame = frame_for(settings, picture, out)?;
     let (frame, timing, stats) = render_into(figure, model, settings, runs, frame);
     match buffer {
         true => write_image(&depth_buffer_picture(&frame), out)?,
@@ -184,10 +186,16 @@ pub fn render_to_file<'a>(
 
 /// A frame of the settings' size with a depth buffer, allocated before drawing
 /// so that too large a size is refused with what it needs instead of aborting.
-fn frame_for(settings: &Settings, out: &Path) -> Result<Frame, WriteError> {
+/// `more` bytes a pixel are asked for besides, for what is made from the frame.
+fn frame_for(settings: &Settings, more: usize, out: &Path) -> Result<Frame, WriteError> {
     let (w, h) = (settings.camera.width, settings.camera.height);
-    // Colour and depth (4 + 4 bytes a pixel), then the 8-bit rows written (3).
-    reserve(out, w, h, 11, "drawing and writing")?;
+    // Colour and depth (4 + 4 bytes a pixel), then the 8-bit rows written (3);
+    // depth of field sums each channel over the image (three u64s a pixel).
+    let blur = match settings.dof {
+        Some(_) => 24,
+        None => 0,
+    };
+    reserve(out, w, h, 11 + blur + more, "drawing and writing")?;
     Frame::try_new(w, h, true).map_err(|why| WriteError::new(out, why))
 }
 
@@ -401,7 +409,7 @@ pub fn render_all(
     let mut written = Vec::new();
     let mut frames = Vec::new();
     for figure in Figure::FIGURES {
-        let frame = frame_for(settings, dir)?;
+        let frame = frame_for(settings, 0, dir)?;
         let (frame, _, _) = render_into(figure, model, settings, None, frame);
         let path = dir.join(figure.figure_file());
         write_image(&frame, &path)?;

@@ -578,13 +578,17 @@ pub fn conclusions(rows: &[Row], plan: &Plan, scene: &str) -> String {
     let _ = writeln!(
         out,
         "- **Light per vertex or per pixel?** Per vertex (Figure 6) takes {:.0}% of the time \
-         of per pixel and its interior error is {:.1} times as large (RMSE {:.2} against \
+         of per pixel and its interior error is {} (RMSE {:.2} against \
          {:.2}){}",
         ratio(vertex.ms(), pixel.ms()) * 100.0,
-        ratio(rmse(vertex), rmse(pixel)),
+        match (rmse(vertex) < 0.005, rmse(pixel) < 0.005) {
+            (true, true) => "the same".to_string(),
+            (false, true) => "larger, where per pixel has none".to_string(),
+            _ => format!("{:.1} times as large", rmse(vertex) / rmse(pixel)),
+        },
         rmse(vertex),
         rmse(pixel),
-        if ratio(rmse(vertex), rmse(pixel)) > 2.0 {
+        if rmse(vertex) >= 0.005 && rmse(vertex) > 2.0 * rmse(pixel) {
             ": large triangles cannot follow the light's falloff."
         } else {
             ": the triangles are small enough for the light at their corners to do."
@@ -593,11 +597,18 @@ pub fn conclusions(rows: &[Row], plan: &Plan, scene: &str) -> String {
     let _ = writeln!(
         out,
         "- **What perspective correction buys.** For per-pixel light, interpolating the \
-         position affinely (Figure 8) multiplies the interior error by {:.1} (RMSE {:.2} \
+         position affinely (Figure 8) {} (RMSE {:.2} \
          against {:.2}) and changes the time by {:+.0}%. For per-vertex light the \
          correction moves the error from {:.2} to {:.2}: there the light, not the \
          interpolation, is the larger mistake.",
-        ratio(rmse(pixel_a), rmse(pixel)),
+        match (rmse(pixel_a) < 0.005, rmse(pixel) < 0.005) {
+            (true, true) => "leaves the interior error as it is".to_string(),
+            (false, true) => "makes an interior error where there was none".to_string(),
+            _ => format!(
+                "multiplies the interior error by {:.1}",
+                rmse(pixel_a) / rmse(pixel)
+            ),
+        },
         rmse(pixel_a),
         rmse(pixel),
         (ratio(pixel_a.ms(), pixel.ms()) - 1.0) * 100.0,

@@ -236,8 +236,12 @@ pub fn image_size(path: &Path) -> Result<(u32, u32), String> {
         // Other formats are not built in.
         Some(f) => {
             let name = format!("{f:?}").to_uppercase();
+            let a = match name.starts_with(['A', 'E', 'I', 'O', 'U']) {
+                true => "an",
+                false => "a",
+            };
             return Err(format!(
-                "a {name} image, which is not read: save it as PNG (or JPEG, BMP, GIF)"
+                "{a} {name} image, which is not read: save it as PNG (or JPEG, BMP, GIF)"
             ));
         }
     }

@@ -45,6 +45,16 @@ pub const MAX_TRIANGLES: usize = 10_000_000;
 /// list: three for each of the most triangles, none shared.
 pub const MAX_VERTICES: usize = 3 * MAX_TRIANGLES;
 
+/// The most an OBJ file may hold (blank lines, comments and all): a model of
+/// the most triangles, written with normals and texture coordinates, takes
+/// about 1.6 GB and 40 million lines.
+pub const MAX_OBJ_BYTES: u64 = 4 << 30;
+pub const MAX_OBJ_LINES: u64 = 1 << 26;
+
+/// The most an MTL file may hold.
+pub const MAX_MTL_BYTES: u64 = 64 << 20;
+pub const MAX_MTL_LINES: u64 = 1 << 22;
+
 /// The longest line read: a line is held whole, so a file without newlines
 /// (`/dev/zero`, a binary file) must not be.
 pub const MAX_LINE_BYTES: usize = 1 << 20;
@@ -644,6 +654,9 @@ struct Lines<R> {
     /// statements of the MTL format it leaves out, each with its line.
     materials_left: usize,
     unsupported: Vec<String>,
+    /// What was read so far, for the bounds on a whole file.
+    bytes: u64,
+    physical_lines: u64,
 }
 
 /// How many material names are remembered for the warnings.
@@ -665,6 +678,8 @@ impl<R: BufRead> Lines<R> {
             polylines: (0, 0),
             materials_left: MAX_MATERIALS,
             unsupported: Vec::new(),
+            bytes: 0,
+            physical_lines: 0,
         }
     }
 
@@ -757,6 +772,13 @@ impl<R: BufRead> Lines<R> {
                 format!("v {}\n", xyz.join(" "))
             }
             (Kind::Obj, _) => line,
+            (Kind::Mtl, "map_Kd") if words.next().is_none() => {
+                if self.unsupported.len() < MAX_NAMES {
+                    self.unsupported
+                        .push(format!("line {number}: map_Kd names no file: left out"));
+                }
+                left_out
+            }
             (Kind::Mtl, "newmtl" | "map_Kd") => line,
             (Kind::Mtl, "Kd") => match words.next() {
                 Some(form @ ("spectral" | "xyz")) => {
@@ -893,10 +915,10 @@ fn read_line_ending(
             inner.consume(n);
             continue;
         };
-        let lone_return = buf[end] == b'\r';
+        let at_return = buf[end] == b'\r';
         bytes.extend_from_slice(&buf[..end]);
         inner.consume(end + 1);
-        if lone_return && inner.fill_buf()?.first() == Some(&b'\n') {
+        if at_return && inner.fill_buf()?.first() == Some(&b'\n') {
             inner.consume(1);
         }
         bytes.push(b'\n');
@@ -933,11 +955,25 @@ impl<R: BufRead> BufRead for Lines<R> {
     /// [`MAX_LINE_BYTES`] of it.
     fn read_line(&mut self, text: &mut String) -> io::Result<usize> {
         let number = self.line + 1;
+        let (most_bytes, most_lines) = match self.kind {
+            Kind::Obj => (MAX_OBJ_BYTES, MAX_OBJ_LINES),
+            Kind::Mtl => (MAX_MTL_BYTES, MAX_MTL_LINES),
+        };
+        if self.bytes > most_bytes || self.physical_lines > most_lines {
+            let why = format!(
+                "more than {} MB or {most_lines} lines: too large to load",
+                most_bytes >> 20
+            );
+            self.stop = Some(format!("line {number}: {why}"));
+            return Err(io::Error::other(why));
+        }
         let mut line = String::new();
         let mut more = 0; // lines joined to the first by a closing backslash
         loop {
             let mut bytes = Vec::new();
             let read = read_line_ending(&mut self.inner, MAX_LINE_BYTES - line.len(), &mut bytes);
+            self.physical_lines += 1;
+            self.bytes += bytes.len() as u64;
             let part = match read {
                 Err(e) => Err(e.to_string()),
                 Ok(n) if line.len() + n > MAX_LINE_BYTES => Err(format!(
