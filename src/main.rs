@@ -268,7 +268,6 @@ fn run(cli: Cli) -> Result<(), Failure> {
 }
 
 fn main() -> ExitCode {
-    app::streams::guard();
     let cli = match Cli::command()
         .try_get_matches()
         .and_then(|m| Cli::from_arg_matches(&m))
@@ -281,8 +280,7 @@ fn main() -> ExitCode {
         }
         Err(e) if !e.use_stderr() => {
             // --help and --version: clap prints them in full, on stdout.
-            let printed = e.print().is_ok() && !app::streams::stdout_closed();
-            return match printed {
+            return match e.print().is_ok() {
                 true => ExitCode::SUCCESS,
                 false => ExitCode::from(1),
             };

@@ -686,18 +686,15 @@ fn standard_streams_that_cannot_be_written_lose_only_their_messages() {
     assert!(dir.join("p.png").is_file());
     let o = shell(&dir, "$B depth --size 0x0 2>/dev/full");
     assert_eq!(o.status.code(), Some(2));
-    // stdout closed: what was meant for it fails, where it said it was written.
-    for script in ["$B rows 10,5 5,10 15,15 >&-", "$B depth -o - >&-"] {
+    // Sent to /dev/null, write-only or read-write (Python's subprocess.DEVNULL,
+    // and what Rust's runtime puts in place of a closed stream): written, as asked.
+    for script in [
+        "$B rows 10,5 5,10 15,15 >/dev/null",
+        "$B rows 10,5 5,10 15,15 1<>/dev/null",
+    ] {
         let o = shell(&dir, script);
-        refused(
-            &o,
-            1,
-            "standard output: it was closed when rasterlab started",
-        );
+        assert_eq!(o.status.code(), Some(0), "{script}: {}", err(&o));
     }
-    // Sent to /dev/null on purpose: written, as asked.
-    let o = shell(&dir, "$B rows 10,5 5,10 15,15 >/dev/null");
-    assert_eq!(o.status.code(), Some(0), "{}", err(&o));
 }
 
 #[test]
@@ -1142,11 +1139,7 @@ fn a_report_without_light_compares_no_error_to_none() {
 #[test]
 fn help_that_cannot_be_written_fails() {
     let dir = temp_dir("help-full");
-    for script in [
-        "$B --help >/dev/full",
-        "$B depth --help >/dev/full",
-        "$B --help >&-",
-    ] {
+    for script in ["$B --help >/dev/full", "$B depth --help >/dev/full"] {
         let o = shell(&dir, script);
         assert_eq!(o.status.code(), Some(1), "{script}");
     }

@@ -168,10 +168,6 @@ pub fn write_with(
             let staged = stage(path, &target, write)?;
             commit(path, staged)
         }
-        Destination::Stdout if super::streams::stdout_closed() => Err(WriteError::new(
-            path,
-            "it was closed when rasterlab started",
-        )),
         Destination::Stdout => {
             let mut bytes = Vec::new();
             write(&mut bytes).map_err(|e| WriteError::new(path, e.to_string()))?;
