@@ -72,7 +72,7 @@ fn check(a: &CheckArgs) -> Result<(), Failure> {
                 .map_err(failure)?;
         print_out(&table)?;
         let written = a.csv.iter().chain(checks.iter().flat_map(|c| &c.written));
-        written.for_each(|path| say!("wrote {}", printable(&path.display().to_string())));
+        written.for_each(|path| say!("wrote {}", app::image_io::describe(path)));
         return match checks.iter().all(|c| c.status == check::Status::Matches) {
             true => Ok(()),
             false => Err(Failure::Differs),
@@ -94,7 +94,7 @@ fn check(a: &CheckArgs) -> Result<(), Failure> {
         false => print_out(&result.text(&name))?,
     }
     for path in written {
-        say!("wrote {}", printable(&path.display().to_string()));
+        say!("wrote {}", app::image_io::describe(&path));
     }
     match result.is_handouts_figure(a.stage) {
         true => Ok(()),
@@ -110,7 +110,7 @@ fn print_out(text: &str) -> Result<(), Failure> {
 
 fn wrote(paths: Vec<PathBuf>) {
     for path in paths {
-        say!("wrote {}", printable(&path.display().to_string()));
+        say!("wrote {}", app::image_io::describe(&path));
     }
 }
 

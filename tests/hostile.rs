@@ -921,12 +921,15 @@ fn check_writes_neither_over_a_screenshot_nor_one_heat_map_over_another() {
 fn a_cut_short_jpeg_is_refused_and_one_with_bytes_after_its_end_read() {
     let dir = temp_dir("jpeg-cut");
     let frame = common::render(rasterlab::StageName::Depth, false);
-    let rgb = image::RgbImage::from_fn(frame.width, frame.height, |x, y| {
-        let c = frame.color[(y * frame.width + x) as usize];
-        image::Rgb([(c >> 16) as u8, (c >> 8) as u8, c as u8])
-    });
-    rgb.save_with_format(dir.join("whole.jpg"), image::ImageFormat::Jpeg)
-        .unwrap();
+    image::save_buffer_with_format(
+        dir.join("whole.jpg"),
+        &frame.to_rgb8(),
+        frame.width,
+        frame.height,
+        image::ExtendedColorType::Rgb8,
+        image::ImageFormat::Jpeg,
+    )
+    .unwrap();
     let whole = fs::read(dir.join("whole.jpg")).unwrap();
     fs::write(dir.join("cut.jpg"), &whole[..whole.len() / 2]).unwrap();
     let o = run_in(Some(&dir), &["check", "cut.jpg"]);

@@ -761,11 +761,14 @@ pub fn check_many(
         )));
     }
     let files = submission_files(inputs)?;
-    let same = |a: &Path, b: &Path| match (a.canonicalize(), b.canonicalize()) {
-        (Ok(a), Ok(b)) => a == b,
-        _ => false,
+    let is_input = |csv: &Path| {
+        let csv = csv.canonicalize();
+        files.iter().any(|f| {
+            csv.as_ref()
+                .is_ok_and(|c| f.canonicalize().is_ok_and(|f| f == *c))
+        })
     };
-    if let Some(csv) = csv.filter(|c| files.iter().any(|f| same(f, c))) {
+    if let Some(csv) = csv.filter(|c| is_input(c)) {
         return Err(CheckError::Usage(format!(
             "--csv {}: it is one of the files to check",
             printable(&csv.display().to_string())
@@ -807,8 +810,6 @@ fn common_folder(files: &[PathBuf]) -> PathBuf {
     common.unwrap_or_default()
 }
 
-/// `file`'s path below `common`, without its extension, with `_` for each
-/// folder separator.
 /// `names` with a number added to each that an earlier one already has
 /// (`x.png` and `x.bmp` both give `x`: the second `x-2`).
 fn unique(names: Vec<String>) -> Vec<String> {
@@ -827,6 +828,8 @@ fn unique(names: Vec<String>) -> Vec<String> {
         .collect()
 }
 
+/// `file`'s path below `common`, without its extension, with `_` for each
+/// folder separator.
 fn heat_name(file: &Path, common: &Path) -> String {
     let inner = file.strip_prefix(common).unwrap_or(file).with_extension("");
     let parts: Vec<String> = inner

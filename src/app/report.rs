@@ -533,6 +533,9 @@ pub fn conclusions(rows: &[Row], plan: &Plan, scene: &str) -> String {
         Metric::Differing { interior, .. } => interior * 100.0,
         _ => f64::NAN,
     };
+    // An error printed as 0.00 (a scene without light, say) has no ratio to
+    // another: the sentences say so in words.
+    let shown_zero = |e: f64| e < 0.005;
     let ratio = |a: f64, b: f64| if b > 0.0 { a / b } else { f64::INFINITY };
     let mut out = String::new();
     let _ = writeln!(
@@ -581,14 +584,14 @@ pub fn conclusions(rows: &[Row], plan: &Plan, scene: &str) -> String {
          of per pixel and its interior error is {} (RMSE {:.2} against \
          {:.2}){}",
         ratio(vertex.ms(), pixel.ms()) * 100.0,
-        match (rmse(vertex) < 0.005, rmse(pixel) < 0.005) {
+        match (shown_zero(rmse(vertex)), shown_zero(rmse(pixel))) {
             (true, true) => "the same".to_string(),
             (false, true) => "larger, where per pixel has none".to_string(),
             _ => format!("{:.1} times as large", rmse(vertex) / rmse(pixel)),
         },
         rmse(vertex),
         rmse(pixel),
-        if rmse(vertex) >= 0.005 && rmse(vertex) > 2.0 * rmse(pixel) {
+        if !shown_zero(rmse(vertex)) && rmse(vertex) > 2.0 * rmse(pixel) {
             ": large triangles cannot follow the light's falloff."
         } else {
             ": the triangles are small enough for the light at their corners to do."
@@ -601,7 +604,7 @@ pub fn conclusions(rows: &[Row], plan: &Plan, scene: &str) -> String {
          against {:.2}) and changes the time by {:+.0}%. For per-vertex light the \
          correction moves the error from {:.2} to {:.2}: there the light, not the \
          interpolation, is the larger mistake.",
-        match (rmse(pixel_a) < 0.005, rmse(pixel) < 0.005) {
+        match (shown_zero(rmse(pixel_a)), shown_zero(rmse(pixel))) {
             (true, true) => "leaves the interior error as it is".to_string(),
             (false, true) => "makes an interior error where there was none".to_string(),
             _ => format!(

@@ -19,12 +19,14 @@ pub fn say(line: &str) {
 /// name from a model file or a path must not move the terminal's cursor, set
 /// its title or break a message's one line.
 pub fn printable(text: &str) -> String {
-    text.chars()
-        .map(|c| match c.is_control() {
-            true => c.escape_default().to_string(),
-            false => c.to_string(),
-        })
-        .collect()
+    let mut shown = String::with_capacity(text.len());
+    for c in text.chars() {
+        match c.is_control() {
+            true => shown.extend(c.escape_default()),
+            false => shown.push(c),
+        }
+    }
+    shown
 }
 
 /// [`say`] with `format!`'s arguments.

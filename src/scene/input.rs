@@ -94,6 +94,21 @@ pub struct ImageLimit {
     pub what: &'static str,
 }
 
+impl ImageLimit {
+    /// The width and height of the image at `path`, from its header, refused
+    /// when a side is longer than allowed.
+    pub fn allowed_size(&self, path: &Path) -> Result<(u32, u32), String> {
+        let (w, h) = image_size(path)?;
+        if w > self.max_side || h > self.max_side {
+            return Err(format!(
+                "{w}x{h} is too large for {} (at most {} pixels a side)",
+                self.what, self.max_side
+            ));
+        }
+        Ok((w, h))
+    }
+}
+
 /// The image at `path` (PNG, JPEG, BMP or GIF by its content, TGA by its
 /// name), refused from its header when a side is longer than `limit` allows.
 pub fn read_image(path: &Path, limit: ImageLimit) -> Result<image::DynamicImage, String> {
@@ -105,13 +120,7 @@ pub fn read_image_with_format(
     path: &Path,
     limit: ImageLimit,
 ) -> Result<(image::DynamicImage, Option<image::ImageFormat>), String> {
-    let (w, h) = image_size(path)?;
-    if w > limit.max_side || h > limit.max_side {
-        return Err(format!(
-            "{w}x{h} is too large for {} (at most {} pixels a side)",
-            limit.what, limit.max_side
-        ));
-    }
+    let (w, h) = limit.allowed_size(path)?;
     let mut limits = image::Limits::default();
     limits.max_image_width = Some(limit.max_side);
     limits.max_image_height = Some(limit.max_side);

@@ -265,52 +265,54 @@ fn load_diffuse_textures(
 ) -> Result<(Maps, Vec<String>), String> {
     let mut warnings = Vec::new();
     let mut images = Maps::default();
-    let mut loaded: HashMap<&str, u32> = HashMap::new();
-    // Each texel is held as three floats: the textures in all are bounded, as
-    // one texture's sides are, from their headers before any is read.
+    // Each file named, found once (with the warnings of `file_beside`, and for
+    // each one not there at all: a model shared without its textures still
+    // draws). Each texel is held as three floats, so the textures in all are
+    // bounded, as one texture's sides are, from their headers before any is read.
+    let mut found: HashMap<&str, Option<PathBuf>> = HashMap::new();
     let mut texels = 0u64;
-    let mut sized = std::collections::HashSet::new();
     for (m, map) in materials.iter().zip(maps) {
         let Some(name) = map.as_ref().map(|t| t.file.as_str()) else {
             continue;
         };
-        if name.is_empty() || !sized.insert(name) {
-            continue;
-        }
-        let Some(path) = file_beside(dir, name, "", &mut Vec::new()) else {
-            continue;
-        };
-        let (w, h) = super::input::image_size(&path).unwrap_or((0, 0));
-        texels += w as u64 * h as u64;
-        if texels > MAX_MODEL_TEXELS {
-            return Err(format!(
-                "material {}: map_Kd {}: the model's textures would hold more than {MAX_MODEL_TEXELS} texels in all: refused",
-                m.name,
-                shortened(name)
-            ));
-        }
-    }
-    for (i, (m, map)) in materials.iter().zip(maps).enumerate() {
-        let Some(map) = map else {
-            continue;
-        };
-        let name = map.file.as_str();
         if name.is_empty() {
             return Err(format!("material {}: map_Kd names no file", m.name));
         }
+        if found.contains_key(name) {
+            continue;
+        }
+        let what = format!("material {}: map_Kd", m.name);
+        let path = file_beside(dir, name, &what, &mut warnings);
+        match &path {
+            None => warnings.push(format!(
+                "{what} {} is not there: its Kd is drawn instead",
+                shortened(name)
+            )),
+            Some(path) => {
+                let (w, h) = super::input::image_size(path).unwrap_or((0, 0));
+                texels += w as u64 * h as u64;
+                if texels > MAX_MODEL_TEXELS {
+                    return Err(format!(
+                        "{what} {}: the model's textures would hold more than {MAX_MODEL_TEXELS} texels in all: refused",
+                        shortened(name)
+                    ));
+                }
+            }
+        }
+        found.insert(name, path);
+    }
+    let mut loaded: HashMap<&str, u32> = HashMap::new();
+    for (i, (m, map)) in materials.iter().zip(maps).enumerate() {
+        let Some(name) = map.as_ref().map(|t| t.file.as_str()) else {
+            continue;
+        };
+        let Some(Some(path)) = found.get(name) else {
+            continue;
+        };
         let index = match loaded.get(name) {
             Some(&index) => index,
             None => {
-                let what = format!("material {}: map_Kd", m.name);
-                // A model shared without its textures still draws.
-                let Some(path) = file_beside(dir, name, &what, &mut warnings) else {
-                    warnings.push(format!(
-                        "{what} {} is not there: its Kd is drawn instead",
-                        shortened(name)
-                    ));
-                    continue;
-                };
-                let texture = super::texture::load_texture(&path)
+                let texture = super::texture::load_texture(path)
                     .map_err(|e| format!("material {}: map_Kd: {e}", m.name))?;
                 let index = images.push(texture);
                 loaded.insert(name, index);
@@ -758,14 +760,14 @@ impl<R: BufRead> Lines<R> {
     fn statement(&mut self, line: String, number: usize) -> String {
         let mut words = line.split_whitespace();
         let first = words.next().unwrap_or("");
-        let left_out = "#\n".to_string();
+        let comment = || "#\n".to_string();
         match (self.kind, first) {
             (Kind::Obj, "l") => {
                 if self.polylines.1 == 0 {
                     self.polylines.0 = number;
                 }
                 self.polylines.1 += 1;
-                left_out
+                comment()
             }
             (Kind::Obj, "v") if words.clone().count() >= 6 => {
                 let xyz: Vec<&str> = words.take(3).collect();
@@ -773,26 +775,28 @@ impl<R: BufRead> Lines<R> {
             }
             (Kind::Obj, _) => line,
             (Kind::Mtl, "map_Kd") if words.next().is_none() => {
-                if self.unsupported.len() < MAX_NAMES {
-                    self.unsupported
-                        .push(format!("line {number}: map_Kd names no file: left out"));
-                }
-                left_out
+                self.note_left_out(format!("line {number}: map_Kd names no file: left out"));
+                comment()
             }
             (Kind::Mtl, "newmtl" | "map_Kd") => line,
             (Kind::Mtl, "Kd") => match words.next() {
                 Some(form @ ("spectral" | "xyz")) => {
-                    if self.unsupported.len() < MAX_NAMES {
-                        self.unsupported.push(format!(
-                            "line {number}: Kd {form} is not supported: left out"
-                        ));
-                    }
-                    left_out
+                    self.note_left_out(format!(
+                        "line {number}: Kd {form} is not supported: left out"
+                    ));
+                    comment()
                 }
                 _ => one_number_colour(&line).unwrap_or(line),
             },
             (Kind::Mtl, _) if first.starts_with('#') || first.is_empty() => line,
-            (Kind::Mtl, _) => left_out,
+            (Kind::Mtl, _) => comment(),
+        }
+    }
+
+    /// Says why an MTL statement is left out (the first [`MAX_NAMES`] of them).
+    fn note_left_out(&mut self, why: String) {
+        if self.unsupported.len() < MAX_NAMES {
+            self.unsupported.push(why);
         }
     }
 
@@ -983,6 +987,7 @@ impl<R: BufRead> BufRead for Lines<R> {
                     .unwrap_or_else(|e| self.latin1(e.into_bytes(), number + more))),
             };
             match part {
+                Ok(part) if line.is_empty() => line = part,
                 Ok(part) => line.push_str(&part),
                 Err(why) => {
                     self.stop = Some(format!("line {}: {why}", number + more));

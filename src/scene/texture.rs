@@ -64,12 +64,9 @@ pub fn load_texture(path: &Path) -> Result<Texture, String> {
         max_side: MAX_TEXTURE_SIDE,
         what: "a texture",
     };
-    let (width, height) =
-        super::input::image_size(path).map_err(|e| format!("texture {shown}: {e}"))?;
-    if width > limit.max_side || height > limit.max_side {
-        // read_image's refusal, with its reason, before any memory is asked for.
-        super::input::read_image(path, limit).map_err(|e| format!("texture {shown}: {e}"))?;
-    }
+    let (width, height) = limit
+        .allowed_size(path)
+        .map_err(|e| format!("texture {shown}: {e}"))?;
     let n = width as usize * height as usize;
     // The decoded image (at most 8 bytes a pixel) and the texels, asked for
     // before decoding: an allocation the decoder cannot make aborts.
