@@ -9,8 +9,9 @@ use crate::extensions::texture::{Filter, Maps, Model, NO_MAPS};
 use crate::extensions::textured::{
     SmoothTexturedPixelLight, TexturedPixelLight, TexturedVertexLight,
 };
-use crate::pipeline::draw::{Cull, Handover, Stats, Vertices};
+use crate::pipeline::draw::{Cull, Handover, Stats};
 use crate::pipeline::raster::{EdgeRaster, Lines, Rasterizer, RowRaster, SharedPlacing};
+use crate::pipeline::vertices::Vertices;
 use crate::pipeline::StageName;
 use crate::pipeline::{
     Affine, Camera, Depth, Filled, Frame, Interpolation, Light, Lighting, Mesh, Perspective,

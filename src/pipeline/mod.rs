@@ -16,6 +16,8 @@
 //! - [`interpolate`](mod@interpolate): `Interpolate` for any per-pixel struct, and
 //!   perspective-correct or affine interpolation.
 //! - [`target`]: colour and depth buffers over a band of rows, and 8-bit packing.
+//! - [`vertices`]: each vertex of the mesh taken to camera space and projected
+//!   once per frame, whichever faces share it.
 //! - [`draw`]: the handout's `Draw` and `DrawPolygon`, which joins them;
 //!   [`bands`]: the faces in groups, for a frame drawn in bands of rows.
 //!
@@ -31,6 +33,7 @@ pub mod mesh;
 pub mod raster;
 pub mod stage;
 pub mod target;
+pub mod vertices;
 
 pub use camera::Camera;
 pub use draw::{Cull, Pipeline, Stats};
