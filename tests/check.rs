@@ -953,19 +953,19 @@ fn the_check_pages_pictures_are_current() {
     let dir = temp_dir("check-page");
     let options = CheckOptions {
         out: Some(dir.to_path_buf()),
+        light: Some(Vec3::new(0.0, -0.5, -0.7)),
         ..CheckOptions::default()
     };
-    // Without --fit-light the shade differs inside (the heat map on the page);
-    // with it, the light, the power and both variants are found.
+    // From the handout's light, given, the shade differs inside (the heat map
+    // on the page); as it comes, the light is searched for, and the light, the
+    // power and both variants are found, as with --fit-light.
     let (report, _) = check_image_file(&shot, &options).unwrap();
     let f = report.fitted.as_ref().unwrap();
     assert_eq!(f.variants(), ["truncated-colours"]);
     assert_eq!(report.remaining.summary(), "everywhere");
-    let searched = CheckOptions {
-        fit_light: true,
-        ..CheckOptions::default()
-    };
-    let (report, _) = check_image_file(&shot, &searched).unwrap();
+    assert!(!report.light_searched);
+    let (report, _) = check_image_file(&shot, &CheckOptions::default()).unwrap();
+    assert!(report.light_searched);
     let f = report.fitted.as_ref().unwrap();
     assert_eq!(
         f.variants(),
@@ -1439,6 +1439,71 @@ fn a_light_moved_far_is_found_and_light_is_never_negative() {
         "{:?}",
         c.shading
     );
+}
+
+/// A light moved with the handout's keys (d five times, and a walked camera
+/// with the light moved too) is searched for without --fit-light, once the
+/// shade inside the surfaces differs, and found exactly; the figure and the
+/// handout's light stay as they were.
+#[test]
+fn a_light_moved_with_the_keys_is_found_without_asking() {
+    use rasterlab::app::check::{check_image_file, CheckOptions};
+    use rasterlab::app::{self as app, image_io::write_image, Settings};
+    use rasterlab::{Figure, StageName};
+    let dir = temp_dir("check-keys-light");
+    let cases = [
+        (
+            StageName::PixelLight,
+            [0.0, 0.0, -3.001],
+            0.0,
+            [0.5, -0.5, -0.7],
+            7,
+        ),
+        (
+            StageName::VertexLight,
+            [0.0, 0.0, -3.001],
+            0.0,
+            [0.0, -0.5, -1.0],
+            6,
+        ),
+        (
+            StageName::PixelLight,
+            [0.0, 0.0, -2.501],
+            -17.1887,
+            [0.4, -0.5, -0.4],
+            7,
+        ),
+    ];
+    for (stage, at, yaw, light, figure) in cases {
+        let mut settings = walked_to(at, yaw, 0.0);
+        settings.light.position = Vec3::from(light);
+        let (frame, _) = app::render(Figure::of(stage), &cornell_box(), &settings, None);
+        let shot = dir.join("moved.png");
+        write_image(&frame, &shot).unwrap();
+        let (check, _) = check_image_file(&shot, &CheckOptions::default()).unwrap();
+        let f = check.fitted.as_ref().expect("a lab 3 image");
+        assert_eq!((f.hypothesis.figure(), f.variants()), (figure, vec![]));
+        assert!(f.light.distance(Vec3::from(light)) < 1e-3, "{}", f.light);
+        assert!(check.light_searched && check.remaining.total == check.remaining.edges);
+        assert!(check
+            .notes
+            .iter()
+            .any(|n| n.contains("the light was searched for")));
+        assert!(!check.is_handouts_figure(None));
+        let text = check.text("moved.png");
+        assert!(!text.contains("--fit-light searches"), "{text}");
+    }
+    // The handout's figure: nothing to search for, exit status 0.
+    let (frame, _) = app::render(
+        Figure::of(StageName::PixelLight),
+        &cornell_box(),
+        &Settings::default(),
+        None,
+    );
+    let shot = dir.join("fig7.png");
+    write_image(&frame, &shot).unwrap();
+    let (check, _) = check_image_file(&shot, &CheckOptions::default()).unwrap();
+    assert!(check.is_handouts_figure(None) && !check.light_searched);
 }
 
 /// Screenshots taken after walking around, turned, raised and pulled back, in

@@ -233,6 +233,23 @@ fn explained(check: &ImageCheck) -> bool {
     check.fitted.is_some() && matches!(check.remaining.summary(), "none" | "edges")
 }
 
+/// Whether `searched`, checked from a light searched for, explains its image
+/// better than `given`, from the light given: a lab 3 image from a light
+/// elsewhere whose interiors are at most half as far off (RMSE). A shade that
+/// differs for another reason (a formula written otherwise) moves the light a
+/// little and gains little; a light moved by a few key presses leaves tens of
+/// levels that its position takes to nearly nothing.
+fn light_explains(searched: &ImageCheck, given: &ImageCheck) -> bool {
+    let Some(s) = &searched.fitted else {
+        return false;
+    };
+    s.light != given.closest.light
+        && given
+            .fitted
+            .as_ref()
+            .is_none_or(|g| s.errors.interior_rmse <= 0.5 * g.errors.interior_rmse)
+}
+
 /// The largest side checked: a screenshot is a window, and each hypothesis draws
 /// several frames of its size.
 pub const MAX_CHECK_SIDE: u32 = 4096;
@@ -477,6 +494,32 @@ fn check_screenshot(
             check.camera = Some(at_3.camera);
             check.adjusted = true;
             setup = at_3;
+        }
+    }
+    // A light moved (the handout's Update moves it with a, w, s and d): the
+    // shade inside the surfaces is off while their edges fit, and under the
+    // wrong light another stage or a variant can look best. The light is then
+    // searched for, as --fit-light does, unless the command line places it.
+    if !setup.fit_light && options.light.is_none() && check.shade_differs() {
+        let mut searched = setup.clone();
+        searched.fit_light = true;
+        let again = check_image(&observed, &searched);
+        if light_explains(&again, &check) {
+            let l = again.closest.light;
+            let mut notes = std::mem::take(&mut check.notes);
+            notes.push(format!(
+                "the shade inside the surfaces is not that of the handout's light at (0, -0.5, -0.7): the light was searched for (as --fit-light does) and found at ({}, {}, {}); give --light to check from a light you know",
+                round3(l.x), round3(l.y), round3(l.z)
+            ));
+            check = ImageCheck {
+                notes,
+                camera: check.camera,
+                adjusted: check.adjusted,
+                ..again
+            };
+            setup = searched;
+        } else {
+            check.light_searched_in_vain = true;
         }
     }
     // A frame found around something that is no lab image (a photo's edges)

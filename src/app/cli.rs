@@ -941,7 +941,8 @@ pub struct CheckArgs {
     #[arg(long, value_name = "DEG", default_value = "0", value_parser = parse::finite,
           allow_hyphen_values = true)]
     pub pitch: f32,
-    /// Light position [default: 0,-0.5,-0.7; the start of the search with --fit-light].
+    /// Light position, not searched for [default: 0,-0.5,-0.7, and searched for
+    /// where the shade inside the surfaces differs from it].
     #[arg(long, value_name = "X,Y,Z", value_parser = parse::vec3, allow_hyphen_values = true)]
     pub light: Option<Vec3>,
     /// Light power P of eq. 10 [default: fitted to the image].
@@ -950,7 +951,8 @@ pub struct CheckArgs {
     /// Indirect light N of eq. 11 [default: fitted to the image].
     #[arg(long, value_name = "N", value_parser = parse::non_negative, allow_hyphen_values = true)]
     pub indirect: Option<f32>,
-    /// Also search for the light's position (lit stages).
+    /// Search for the light's position (lit stages) from --light or the
+    /// handout's, even where the shade inside the surfaces fits.
     #[arg(long)]
     pub fit_light: bool,
     /// Folder for IMAGE-heat.png (where the image differs from the best

@@ -694,8 +694,12 @@ pub struct ImageCheck {
     pub remaining: Where,
     /// What the best explanation draws.
     pub expected: Frame,
-    /// Whether the light's position was searched for (`--fit-light`).
+    /// Whether the light's position was searched for (`--fit-light`, or
+    /// because the shade differed) and this check is from the light found.
     pub light_searched: bool,
+    /// Whether the light was searched for because the shade differed, and no
+    /// position explained the image better: this check is from the light given.
+    pub light_searched_in_vain: bool,
     /// What was done to the image before checking it, in words (red and blue
     /// swapped back, a focal length other than assumed).
     pub notes: Vec<String>,

@@ -230,17 +230,29 @@ impl ImageCheck {
             THRESHOLD
         );
         let _ = writeln!(out, "remaining:  {}", r.summary());
-        let shade_off = match self.lossy {
-            true => f.errors.interior_rmse > JPEG_NOISE_RMSE,
-            false => r.total > r.edges * 2,
-        };
-        if lit && !self.light_searched && shade_off {
+        if self.light_searched_in_vain && self.shade_differs() {
+            let _ = writeln!(
+                out,
+                "The shade still differs inside the surfaces, and no position of the light explains it better (it was searched for, as --fit-light does): the heat map (--out) shows where."
+            );
+        } else if !self.light_searched && self.shade_differs() {
             let _ = writeln!(
                 out,
                 "The shade still differs inside the surfaces: if your light is elsewhere, --fit-light searches for it."
             );
         }
         out
+    }
+
+    /// Whether the best explanation lights the surfaces and their shade still
+    /// differs inside them, not only along edges: what a light elsewhere leaves.
+    pub fn shade_differs(&self) -> bool {
+        let f = self.fitted.as_ref().unwrap_or(&self.closest);
+        f.hypothesis.lit()
+            && match self.lossy {
+                true => f.errors.interior_rmse > JPEG_NOISE_RMSE,
+                false => self.remaining.total > self.remaining.edges * 2,
+            }
     }
 
     fn where_words(&self) -> String {
