@@ -1147,3 +1147,148 @@ fn help_that_cannot_be_written_fails() {
         assert_eq!(o.status.code(), Some(1), "{script}");
     }
 }
+
+// A fourth look (after `e3c5418`): the cases below.
+
+/// A PNG at `path`: 8x8 grey pixels after an iCCP chunk whose profile, stored
+/// without compression, inflates to `profile` zero bytes.
+fn png_with_profile(path: &Path, profile: usize) {
+    fn crc32(bytes: &[u8]) -> u32 {
+        let mut crc = !0u32;
+        for &b in bytes {
+            crc ^= b as u32;
+            for _ in 0..8 {
+                crc = (crc >> 1) ^ (0xEDB8_8320 & (crc & 1).wrapping_neg());
+            }
+        }
+        !crc
+    }
+    fn chunk(out: &mut Vec<u8>, kind: &[u8], data: &[u8]) {
+        out.extend((data.len() as u32).to_be_bytes());
+        let start = out.len();
+        out.extend(kind);
+        out.extend(data);
+        let crc = crc32(&out[start..]);
+        out.extend(crc.to_be_bytes());
+    }
+    /// A zlib stream of `data` in stored blocks.
+    fn stored(data: &[u8]) -> Vec<u8> {
+        let mut z = vec![0x78, 0x01];
+        let blocks: Vec<&[u8]> = data.chunks(65535).collect();
+        for (i, block) in blocks.iter().enumerate() {
+            z.push((i + 1 == blocks.len()) as u8);
+            let n = block.len() as u16;
+            z.extend(n.to_le_bytes());
+            z.extend((!n).to_le_bytes());
+            z.extend(*block);
+        }
+        let (mut a, mut b) = (1u32, 0u32);
+        for &x in data {
+            a = (a + x as u32) % 65521;
+            b = (b + a) % 65521;
+        }
+        z.extend((b << 16 | a).to_be_bytes());
+        z
+    }
+    let mut png = b"\x89PNG\r\n\x1a\n".to_vec();
+    let mut header = Vec::new();
+    header.extend(8u32.to_be_bytes());
+    header.extend(8u32.to_be_bytes());
+    header.extend([8, 2, 0, 0, 0]);
+    chunk(&mut png, b"IHDR", &header);
+    let mut iccp = b"profile\0\0".to_vec();
+    iccp.extend(stored(&vec![0; profile]));
+    chunk(&mut png, b"iCCP", &iccp);
+    let rows: Vec<u8> = (0..8)
+        .flat_map(|_| [0].into_iter().chain([128; 24]))
+        .collect();
+    chunk(&mut png, b"IDAT", &stored(&rows));
+    chunk(&mut png, b"IEND", &[]);
+    fs::write(path, png).unwrap();
+}
+
+#[test]
+fn images_with_nothing_to_read_or_too_much_metadata_are_refused() {
+    let dir = temp_dir("fourth-images");
+    // A GIF whose screen is 0 x 0 (the check panicked drawing a 0x0 depth buffer).
+    let mut gif = b"GIF89a\0\0\0\0\x80\0\0\0\0\0\xff\xff\xff,".to_vec();
+    gif.extend([0, 0, 0, 0, 1, 0, 1, 0, 0, 2, 2, 0x44, 1, 0, b';']);
+    fs::write(dir.join("empty.gif"), gif).unwrap();
+    let o = run_in(Some(&dir), &["check", "empty.gif"]);
+    refused(&o, 2, "cannot read empty.gif: the image is empty (0x0)");
+    // A colour profile of 17 MB on an 8x8 texture: refused before it is all
+    // inflated (2 MB of profile inflated to 2 GB aborted under a memory cap).
+    png_with_profile(&dir.join("profile.png"), 17 << 20);
+    for args in [
+        &["pixel-light", "--texture", "profile.png", "-o", "x.png"][..],
+        &["check", "profile.png"],
+    ] {
+        let o = run_in(Some(&dir), args);
+        let e = err(&o);
+        assert!(!o.status.success(), "{args:?}");
+        assert!(
+            e.contains("a PNG image whose metadata (a colour profile or text) inflates past 16 MB"),
+            "{args:?}: {e}"
+        );
+    }
+    // A small profile is read past as before.
+    png_with_profile(&dir.join("small.png"), 3000);
+    let o = run_in(
+        Some(&dir),
+        &["pixel-light", "--texture", "small.png", "-o", "x.png"],
+    );
+    assert!(o.status.success(), "{}", err(&o));
+}
+
+#[test]
+fn a_file_size_limit_is_an_error_and_leaves_no_temporary_file() {
+    let dir = temp_dir("fourth-fsize");
+    // 50 blocks of 1 KB: a 3000x3000 PNG does not fit (SIGXFSZ killed the
+    // process silently, exit 153, and left the temporary file).
+    let o = shell(
+        &dir,
+        "ulimit -f 50 && exec $B pixel-light --size 3000x3000 -o big.png",
+    );
+    let e = err(&o);
+    assert_eq!(o.status.code(), Some(1), "{e}");
+    assert!(e.contains("big.png") && e.contains("File too large"), "{e}");
+    let left: Vec<_> = fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert!(left.is_empty(), "{left:?}");
+}
+
+#[test]
+fn an_output_over_another_users_file_takes_no_set_id_or_stranger_mode() {
+    use std::os::unix::fs::{chown, MetadataExt};
+    if !is_root() {
+        eprintln!("skipped: not root");
+        return;
+    }
+    let dir = temp_dir("fourth-mode");
+    // nobody's file, set-user-ID, set-group-ID and writable by all: root's
+    // output replacing it was all of those, and root's.
+    let theirs = dir.join("theirs.png");
+    fs::write(&theirs, b"x").unwrap();
+    chown(&theirs, Some(65534), Some(65534)).unwrap();
+    fs::set_permissions(&theirs, fs::Permissions::from_mode(0o6777)).unwrap();
+    // Root's own, set-user-ID: keeps its other bits.
+    let ours = dir.join("ours.png");
+    fs::write(&ours, b"x").unwrap();
+    fs::set_permissions(&ours, fs::Permissions::from_mode(0o4750)).unwrap();
+    let fresh = dir.join("fresh.png");
+    for out in [&theirs, &ours, &fresh] {
+        let o = run(&["depth", "--size", "8x6", "-o", out.to_str().unwrap()]);
+        assert!(o.status.success(), "{}", err(&o));
+    }
+    let mode = |p: &Path| fs::metadata(p).unwrap().mode() & 0o7777;
+    assert_eq!(fs::metadata(&theirs).unwrap().uid(), 0);
+    assert_eq!(
+        mode(&theirs),
+        mode(&fresh),
+        "a stranger's file gets a new file's mode"
+    );
+    assert_eq!(mode(&fresh) & 0o7000, 0);
+    assert_eq!(mode(&ours), 0o750);
+}

@@ -239,8 +239,9 @@ struct Staged {
 
 /// Writes a temporary file beside `target`: created exclusively (a name that
 /// exists, a planted link included, is never opened), with a short random name,
-/// and the permissions an existing `target` has (a new one gets 0666 less the
-/// umask, as any new file). On failure it is removed.
+/// and the permissions an existing `target` of the running user's has
+/// ([`kept_mode`]; a new one gets 0666 less the umask, as any new file). On
+/// failure it is removed.
 fn stage(
     path: &Path,
     target: &Path,
@@ -266,9 +267,9 @@ fn stage(
     let mut out = BufWriter::new(file);
     write(&mut out).map_err(fail)?;
     let file = out.into_inner().map_err(|e| fail(e.into_error()))?;
-    if let Ok(m) = fs::metadata(target) {
+    if let Some(mode) = fs::metadata(target).ok().and_then(|m| kept_mode(&m)) {
         file.as_file()
-            .set_permissions(m.permissions())
+            .set_permissions(fs::Permissions::from_mode(mode))
             .map_err(fail)?;
     }
     Ok(Staged {
@@ -334,6 +335,17 @@ fn follow_links(path: &Path) -> Result<PathBuf, String> {
         }
     }
     Err("too many levels of symbolic links".into())
+}
+
+/// The permissions a file written over `existing` keeps: its read, write and
+/// run bits when the running user owns it, never set-user-ID, set-group-ID or
+/// sticky (as `cp` drops them); none, so that a new file's are taken, when
+/// another user owns it: root writing over a stranger's file would otherwise
+/// make a root-owned file with whatever mode the stranger chose.
+fn kept_mode(existing: &fs::Metadata) -> Option<u32> {
+    // SAFETY: geteuid has no preconditions and cannot fail.
+    let me = unsafe { libc::geteuid() };
+    (existing.uid() == me).then_some(existing.mode() & 0o777)
 }
 
 /// The owner of a symbolic link that neither the running user nor root made.

@@ -7,6 +7,18 @@
 
 use std::io::Write;
 
+/// Past a file-size limit (`ulimit -f`) a write fails with "File too large",
+/// and the temporary file is removed with a one-line error, instead of the
+/// kernel's SIGXFSZ ending the process silently with a half file left. Called
+/// first in `main`, before any thread starts.
+pub fn write_errors_not_signals() {
+    // SAFETY: setting a signal to be ignored has no preconditions; no other
+    // thread exists yet to race on the disposition.
+    unsafe {
+        libc::signal(libc::SIGXFSZ, libc::SIG_IGN);
+    }
+}
+
 /// `line` on stderr; a stderr that cannot be written loses it, and nothing else.
 pub fn say(line: &str) {
     let mut err = std::io::stderr().lock();

@@ -255,13 +255,39 @@ pub fn image_size(path: &Path) -> Result<(u32, u32), String> {
         }
     }
     let format = reader.format();
+    let mut reader = reader;
+    reader.limits(header_limits());
     reader.into_dimensions().map_err(|e| damaged(format, e))
 }
+
+/// What reading an image's size may allocate: a PNG's colour profile and text
+/// come before its pixels and are inflated on the way (2 MB of a profile
+/// inflated to 2 GB, an abort under a memory cap).
+fn header_limits() -> image::Limits {
+    let mut limits = image::Limits::default();
+    limits.max_alloc = Some(HEADER_BYTES);
+    limits
+}
+
+/// At most how much of an image's metadata is read (colour profiles are
+/// kilobytes, a few megabytes at most).
+const HEADER_BYTES: u64 = 16 << 20;
 
 /// Why an image of `format` could not be decoded, on one line (the decoders'
 /// messages can run over several).
 fn damaged(format: Option<image::ImageFormat>, e: image::ImageError) -> String {
     let kind = format.map_or("".into(), |f| format!("{f:?} ").to_uppercase());
+    if let image::ImageError::Limits(_) = e {
+        let a = match kind.is_empty() {
+            true => "an ",
+            false => "a ",
+        };
+        return format!(
+            "{a}{kind}image whose metadata (a colour profile or text) inflates past \
+             {} MB or past the room for its pixels: not read",
+            HEADER_BYTES >> 20
+        );
+    }
     let why = e
         .to_string()
         .split_whitespace()
