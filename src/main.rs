@@ -269,6 +269,7 @@ fn run(cli: Cli) -> Result<(), Failure> {
 
 fn main() -> ExitCode {
     app::streams::write_errors_not_signals();
+    app::image_io::remove_temporaries_on_signals();
     let cli = match Cli::command()
         .try_get_matches()
         .and_then(|m| Cli::from_arg_matches(&m))

@@ -1292,3 +1292,51 @@ fn an_output_over_another_users_file_takes_no_set_id_or_stranger_mode() {
     assert_eq!(mode(&fresh) & 0o7000, 0);
     assert_eq!(mode(&ours), 0o750);
 }
+
+#[test]
+fn a_signal_while_writing_removes_the_temporary_file() {
+    use std::os::unix::process::ExitStatusExt;
+    let dir = temp_dir("fourth-signals");
+    let temporaries = || {
+        fs::read_dir(&dir)
+            .unwrap()
+            .filter(|e| {
+                e.as_ref()
+                    .unwrap()
+                    .file_name()
+                    .to_string_lossy()
+                    .ends_with(".tmp")
+            })
+            .count()
+    };
+    // Ctrl-C and kill while the PNG is being written (the temporary file was
+    // left, empty or cut short, every time). The write takes a few tens of
+    // milliseconds: tried until a signal lands inside it.
+    for signal in [libc::SIGINT, libc::SIGTERM] {
+        let mut landed = false;
+        for _ in 0..20 {
+            let mut child = Command::new(bin())
+                .args(["pixel-light", "--size", "4000x4000", "-o", "big.png"])
+                .current_dir(&dir)
+                .stdout(Stdio::null())
+                .stderr(Stdio::null())
+                .spawn()
+                .unwrap();
+            let start = Instant::now();
+            while child.try_wait().unwrap().is_none() && temporaries() == 0 {
+                assert!(start.elapsed() < Duration::from_secs(60));
+                std::thread::sleep(Duration::from_micros(500));
+            }
+            // SAFETY: kill only sends a signal to the child, by its id.
+            unsafe { libc::kill(child.id() as i32, signal) };
+            let status = child.wait().unwrap();
+            assert_eq!(temporaries(), 0, "signal {signal}: {status:?}");
+            if status.signal() == Some(signal) {
+                landed = true;
+                break;
+            }
+            let _ = fs::remove_file(dir.join("big.png"));
+        }
+        assert!(landed, "signal {signal} never reached a write");
+    }
+}

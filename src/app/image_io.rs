@@ -24,6 +24,7 @@ use std::fs;
 use std::io::{self, BufWriter, Write};
 use std::os::unix::fs::{MetadataExt, OpenOptionsExt, PermissionsExt};
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
 
 /// Why an image could not be written; the message names the path.
 #[derive(Debug)]
@@ -235,6 +236,82 @@ pub fn write_all_or_none(files: &[(&Path, &[u8])]) -> Result<(), WriteError> {
 struct Staged {
     file: tempfile::NamedTempFile,
     target: PathBuf,
+    _live: Live,
+}
+
+/// The temporary files being written, removed if a signal ends the process.
+static LIVE: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// A temporary file's place in [`LIVE`], from its making until it is renamed
+/// or removed.
+struct Live(PathBuf);
+
+impl Live {
+    fn new(path: &Path) -> Live {
+        live().push(path.to_path_buf());
+        Live(path.to_path_buf())
+    }
+}
+
+impl Drop for Live {
+    fn drop(&mut self) {
+        let mut files = live();
+        if let Some(i) = files.iter().position(|p| *p == self.0) {
+            files.swap_remove(i);
+        }
+    }
+}
+
+/// Nothing is written while the list is held, so no panic can poison it.
+fn live() -> std::sync::MutexGuard<'static, Vec<PathBuf>> {
+    LIVE.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+/// Ctrl-C, `kill` and a terminal closed (SIGINT, SIGTERM, SIGHUP) end the
+/// process as they would, but first remove the temporary files being
+/// written, which their default action left behind. The signals are blocked
+/// in every thread and waited for by one of their own, so nothing runs in a
+/// signal handler; one the process was started ignoring (`nohup`, a job in
+/// the background) stays ignored. Called first in `main`, before any thread
+/// starts.
+pub fn remove_temporaries_on_signals() {
+    // SAFETY: the sigset is initialised by sigemptyset before use; the calls
+    // change only this process's signal mask and dispositions.
+    unsafe {
+        let mut set: libc::sigset_t = std::mem::zeroed();
+        libc::sigemptyset(&mut set);
+        for signal in [libc::SIGINT, libc::SIGTERM, libc::SIGHUP] {
+            let mut old: libc::sigaction = std::mem::zeroed();
+            let ignored = libc::sigaction(signal, std::ptr::null(), &mut old) == 0
+                && old.sa_sigaction == libc::SIG_IGN;
+            if !ignored {
+                libc::sigaddset(&mut set, signal);
+            }
+        }
+        if libc::pthread_sigmask(libc::SIG_BLOCK, &set, std::ptr::null_mut()) != 0 {
+            return;
+        }
+        let waiting = std::thread::Builder::new()
+            .name("signals".into())
+            .spawn(move || {
+                let mut signal = 0;
+                if libc::sigwait(&set, &mut signal) != 0 {
+                    return;
+                }
+                for path in live().iter() {
+                    let _ = fs::remove_file(path);
+                }
+                // Ended by the signal, as without this thread: its default
+                // action, raised where it is not blocked.
+                libc::signal(signal, libc::SIG_DFL);
+                libc::pthread_sigmask(libc::SIG_UNBLOCK, &set, std::ptr::null_mut());
+                libc::raise(signal);
+            });
+        if waiting.is_err() {
+            // No thread to wait for them: taken as they came.
+            libc::pthread_sigmask(libc::SIG_UNBLOCK, &set, std::ptr::null_mut());
+        }
+    }
 }
 
 /// Writes a temporary file beside `target`: created exclusively (a name that
@@ -264,6 +341,7 @@ fn stage(
         .permissions(fs::Permissions::from_mode(0o666))
         .tempfile_in(dir)
         .map_err(fail)?;
+    let live = Live::new(file.path());
     let mut out = BufWriter::new(file);
     write(&mut out).map_err(fail)?;
     let file = out.into_inner().map_err(|e| fail(e.into_error()))?;
@@ -275,6 +353,7 @@ fn stage(
     Ok(Staged {
         file,
         target: target.to_path_buf(),
+        _live: live,
     })
 }
 
