@@ -1340,3 +1340,25 @@ fn a_signal_while_writing_removes_the_temporary_file() {
         assert!(landed, "signal {signal} never reached a write");
     }
 }
+
+#[test]
+fn negative_whole_numbers_and_numbers_past_f32_are_named() {
+    // "unexpected argument '-1' found" before, where other options gave the range.
+    let o = run(&["raytrace", "--samples", "-1"]);
+    refused(&o, 2, "expected a whole number from 1 to 16, got '-1'");
+    let o = run(&["animate", "depth", "--delay", "-1"]);
+    refused(&o, 2, "expected a whole number from 10 to 10000, got '-1'");
+    // "a number is NaN or infinite" before: it is neither.
+    let dir = temp_dir("fourth-numbers");
+    fs::write(
+        dir.join("big.obj"),
+        "v 1e39 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n",
+    )
+    .unwrap();
+    let o = run_in(Some(&dir), &["depth", "--scene", "big.obj", "-o", "x.png"]);
+    refused(
+        &o,
+        1,
+        "big.obj: line 1: 1e39 is past the largest number a coordinate holds (about 3.4e38)",
+    );
+}

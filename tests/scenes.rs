@@ -163,7 +163,11 @@ fn bad_files_are_one_line_errors() {
         ("back", "f -1 -2 -4\n", "line 4: index -4 is out of range"),
         ("normal", "vn 0 0 1\nf 1//1 2//0 3//1\n", "line 5: index 0"),
         ("nan", "v nan 0 0\nf 1 2 4\n", "line 4: a number is NaN"),
-        ("inf", "v 1e39 0 0\nf 1 2 4\n", "line 4: a number is NaN"),
+        (
+            "inf",
+            "v 1e39 0 0\nf 1 2 4\n",
+            "line 4: 1e39 is past the largest number",
+        ),
         ("w", "v 1 1 1 1e-45\nf 1 2 4\n", "NaN or infinite"),
         ("uv", "vt inf 0\nf 1 2 3\n", "line 4: a number is NaN"),
     ]

@@ -685,7 +685,8 @@ impl AllArgs {
 pub struct RaytraceArgs {
     /// N x N rays per pixel, spread over the pixel (anti-aliasing).
     #[arg(long, value_name = "N", default_value = "1",
-          value_parser = clap::value_parser!(u32).range(1..=16))]
+          value_parser = |s: &str| parse::whole(s, 1, 16).map(|n| n as u32),
+          allow_hyphen_values = true)]
     pub samples: u32,
     /// The nearest triangle's flat colour instead of light (what filled and depth
     /// mean): no light, shadows, textures or normal maps.
@@ -793,7 +794,7 @@ pub struct AnimateArgs {
     pub out: Option<PathBuf>,
     /// How long each triangle shows, in milliseconds (the last image stays 2 s).
     #[arg(long, value_name = "MS", default_value = "150", global = true,
-          value_parser = |s: &str| parse::whole(s, 10, 10_000))]
+          value_parser = |s: &str| parse::whole(s, 10, 10_000), allow_hyphen_values = true)]
     pub delay: u64,
 }
 

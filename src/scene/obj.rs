@@ -853,9 +853,14 @@ impl<R: BufRead> Lines<R> {
             _ => return Ok(()),
         }
         // Words that are not numbers at all are tobj's to report.
-        match words.any(|w| w.parse::<f32>().is_ok_and(|x| !x.is_finite())) {
-            true => Err("a number is NaN or infinite".into()),
-            false => Ok(()),
+        // A number past f32's range (1e39) reads as infinite: said as such.
+        match words.find(|w| w.parse::<f32>().is_ok_and(|x| !x.is_finite())) {
+            Some(w) if w.parse::<f64>().is_ok_and(f64::is_finite) => Err(format!(
+                "{} is past the largest number a coordinate holds (about 3.4e38)",
+                crate::scene::input::shortened(w)
+            )),
+            Some(_) => Err("a number is NaN or infinite".into()),
+            None => Ok(()),
         }
     }
 
