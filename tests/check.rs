@@ -1506,6 +1506,47 @@ fn a_light_moved_with_the_keys_is_found_without_asking() {
     assert!(check.is_handouts_figure(None) && !check.light_searched);
 }
 
+/// Red and blue swapped, or a gamma of 2.2 applied, on a view walked up and
+/// turned: undone, then the camera fitted (each was "not a lab 3 image": the
+/// walls' colours were neither in place from the handout's camera nor fit
+/// for a pose as they were).
+#[test]
+fn a_colour_slip_on_a_walked_view_is_undone_and_the_pose_found() {
+    use rasterlab::app::check::{check_image_file, CheckOptions};
+    use rasterlab::app::{self as app, image_io::write_image};
+    use rasterlab::{Figure, StageName};
+    let dir = temp_dir("check-slip-walk");
+    let walked = walked_to([0.0, 0.0, -2.201], -22.9183, 0.0);
+    let (frame, _) = app::render(
+        Figure::of(StageName::PixelLight),
+        &cornell_box(),
+        &walked,
+        None,
+    );
+    let mut swapped = frame.clone();
+    for c in &mut swapped.color {
+        *c = (*c & 0xff) << 16 | (*c & 0xff00) | (*c >> 16 & 0xff);
+    }
+    let mut gamma = frame.clone();
+    let encode = |v: u32| (255.0 * (v as f64 / 255.0).powf(1.0 / 2.2)).round() as u32;
+    for c in &mut gamma.color {
+        *c = encode(*c >> 16 & 0xff) << 16 | encode(*c >> 8 & 0xff) << 8 | encode(*c & 0xff);
+    }
+    for (image, slip) in [
+        (swapped, "red and blue are swapped"),
+        (gamma, "a gamma of 2.2"),
+    ] {
+        let shot = dir.join("slip.png");
+        write_image(&image, &shot).unwrap();
+        let (check, _) = check_image_file(&shot, &CheckOptions::default()).unwrap();
+        let f = check.fitted.as_ref().expect("a lab 3 image");
+        assert_eq!(f.hypothesis.figure(), 7, "{slip}");
+        assert!(check.notes[0].starts_with(slip), "{:?}", check.notes);
+        assert_pose_found(&check, &walked);
+        assert!(check.remaining.total == check.remaining.edges, "{slip}");
+    }
+}
+
 /// Screenshots taken after walking around, turned, raised and pulled back, in
 /// a 1000 x 1000 window with f = 1000 and a 640 x 480 one with f = 640 too: the camera is fitted to the walls'
 /// colours within 0.02 units and 0.5 degrees (measured: at most 0.014 units

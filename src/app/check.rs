@@ -159,6 +159,12 @@ fn swap_red_blue(frame: &Frame) -> Frame {
 /// A repair of a whole image: a slip undone.
 type Undo = fn(&Frame) -> Frame;
 
+/// The note for red and blue swapped back.
+const SWAPPED: &str = "red and blue are swapped in this image (a pixel format read in the wrong byte order, a common SDL slip); it was checked with them swapped back";
+
+/// The note for a gamma taken off.
+const GAMMA: &str = "a gamma of 2.2 was applied to the colours (an sRGB conversion the handout does not make); it was checked with it taken off";
+
 /// `frame` upside down: rows written bottom to top.
 fn flip_rows(frame: &Frame) -> Frame {
     let mut out = frame.clone();
@@ -434,7 +440,7 @@ fn check_screenshot(
     };
     // Red and blue swapped: an SDL surface read in the other byte order.
     if check.fitted.is_none() {
-        let note = "red and blue are swapped in this image (a pixel format read in the wrong byte order, a common SDL slip); it was checked with them swapped back".to_string();
+        let note = SWAPPED.to_string();
         if let Some((image, _)) = attempt(
             swap_red_blue(&observed),
             setup.clone(),
@@ -451,7 +457,7 @@ fn check_screenshot(
     // not explained, and kept when the slip explains it.
     let slips: [(Undo, &str); 2] = [
         (flip_rows, "the image is upside down (its rows written bottom to top, as glReadPixels gives them); it was checked flipped back"),
-        (remove_gamma, "a gamma of 2.2 was applied to the colours (an sRGB conversion the handout does not make); it was checked with it taken off"),
+        (remove_gamma, GAMMA),
     ];
     for (undo, note) in slips {
         if explained(&check) {
@@ -483,6 +489,28 @@ fn check_screenshot(
                 check.camera = Some(c);
                 check.adjusted = true;
                 setup = tried;
+            }
+        }
+    }
+    // A colour slip and a walk together: neither the given camera nor one
+    // fitted to the walls' colours as they are finds the walls, so the slip
+    // is undone first and the camera fitted to the image then.
+    if check.fitted.is_none() && has_walls && options.camera.is_none() {
+        let colour_slips: [(Undo, &str); 2] = [(swap_red_blue, SWAPPED), (remove_gamma, GAMMA)];
+        for (undo, note) in colour_slips {
+            let image = undo(&observed);
+            let Some((moved, pose)) = fit_camera(&image, &setup, options) else {
+                continue;
+            };
+            let again = check_image(&image, &moved);
+            if lab3(&again) {
+                check = again;
+                check.notes.extend([note.to_string(), pose]);
+                check.camera = Some(moved.camera);
+                check.adjusted = true;
+                setup = moved;
+                observed = image;
+                break;
             }
         }
     }
