@@ -247,9 +247,16 @@ static LIVE: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
 struct Live(PathBuf);
 
 impl Live {
-    fn new(path: &Path) -> Live {
-        live().push(path.to_path_buf());
-        Live(path.to_path_buf())
+    /// The temporary file `make` makes, listed while the list is held: a
+    /// signal that comes as it is made has its removal wait until it is listed.
+    fn make(
+        make: impl FnOnce() -> io::Result<tempfile::NamedTempFile>,
+    ) -> io::Result<(tempfile::NamedTempFile, Live)> {
+        let mut files = live();
+        let file = make()?;
+        files.push(file.path().to_path_buf());
+        let listed = Live(file.path().to_path_buf());
+        Ok((file, listed))
     }
 }
 
@@ -335,13 +342,14 @@ fn stage(
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
-    let file = tempfile::Builder::new()
-        .prefix(".rasterlab-")
-        .suffix(".tmp")
-        .permissions(fs::Permissions::from_mode(0o666))
-        .tempfile_in(dir)
-        .map_err(fail)?;
-    let live = Live::new(file.path());
+    let (file, live) = Live::make(|| {
+        tempfile::Builder::new()
+            .prefix(".rasterlab-")
+            .suffix(".tmp")
+            .permissions(fs::Permissions::from_mode(0o666))
+            .tempfile_in(dir)
+    })
+    .map_err(fail)?;
     let mut out = BufWriter::new(file);
     write(&mut out).map_err(fail)?;
     let file = out.into_inner().map_err(|e| fail(e.into_error()))?;
