@@ -1448,8 +1448,8 @@ fn a_light_moved_far_is_found_and_light_is_never_negative() {
 #[test]
 fn a_light_moved_with_the_keys_is_found_without_asking() {
     use rasterlab::app::check::{check_image_file, CheckOptions};
-    use rasterlab::app::{self as app, image_io::write_image, Settings};
-    use rasterlab::{Figure, StageName};
+    use rasterlab::app::image_io::write_image;
+    use rasterlab::StageName;
     let dir = temp_dir("check-keys-light");
     let cases = [
         (
@@ -1477,9 +1477,8 @@ fn a_light_moved_with_the_keys_is_found_without_asking() {
     for (stage, at, yaw, light, figure) in cases {
         let mut settings = walked_to(at, yaw, 0.0);
         settings.light.position = Vec3::from(light);
-        let (frame, _) = app::render(Figure::of(stage), &cornell_box(), &settings, None);
         let shot = dir.join("moved.png");
-        write_image(&frame, &shot).unwrap();
+        write_image(&render_with(stage, &settings), &shot).unwrap();
         let (check, _) = check_image_file(&shot, &CheckOptions::default()).unwrap();
         let f = check.fitted.as_ref().expect("a lab 3 image");
         assert_eq!((f.hypothesis.figure(), f.variants()), (figure, vec![]));
@@ -1494,14 +1493,8 @@ fn a_light_moved_with_the_keys_is_found_without_asking() {
         assert!(!text.contains("--fit-light searches"), "{text}");
     }
     // The handout's figure: nothing to search for, exit status 0.
-    let (frame, _) = app::render(
-        Figure::of(StageName::PixelLight),
-        &cornell_box(),
-        &Settings::default(),
-        None,
-    );
     let shot = dir.join("fig7.png");
-    write_image(&frame, &shot).unwrap();
+    write_image(&handout_render(StageName::PixelLight), &shot).unwrap();
     let (check, _) = check_image_file(&shot, &CheckOptions::default()).unwrap();
     assert!(check.is_handouts_figure(None) && !check.light_searched);
 }
@@ -1513,16 +1506,11 @@ fn a_light_moved_with_the_keys_is_found_without_asking() {
 #[test]
 fn a_colour_slip_on_a_walked_view_is_undone_and_the_pose_found() {
     use rasterlab::app::check::{check_image_file, CheckOptions};
-    use rasterlab::app::{self as app, image_io::write_image};
-    use rasterlab::{Figure, StageName};
+    use rasterlab::app::image_io::write_image;
+    use rasterlab::StageName;
     let dir = temp_dir("check-slip-walk");
     let walked = walked_to([0.0, 0.0, -2.201], -22.9183, 0.0);
-    let (frame, _) = app::render(
-        Figure::of(StageName::PixelLight),
-        &cornell_box(),
-        &walked,
-        None,
-    );
+    let frame = render_with(StageName::PixelLight, &walked);
     let mut swapped = frame.clone();
     for c in &mut swapped.color {
         *c = (*c & 0xff) << 16 | (*c & 0xff00) | (*c >> 16 & 0xff);

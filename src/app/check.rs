@@ -70,15 +70,6 @@ fn read_screenshot_noting_jpeg(path: &Path) -> Result<(Frame, bool), String> {
     };
     let (img, format) = read_image_with_format(path, limit)
         .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-    // A GIF's screen may be 0 wide: nothing to check, and no stage draws it.
-    if img.width() == 0 || img.height() == 0 {
-        return Err(format!(
-            "cannot read {}: the image is empty ({}x{})",
-            path.display(),
-            img.width(),
-            img.height()
-        ));
-    }
     let rgba = img.to_rgba8();
     let mut frame = Frame::new(rgba.width(), rgba.height());
     for (c, p) in frame.color.iter_mut().zip(rgba.pixels()) {

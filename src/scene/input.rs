@@ -96,9 +96,12 @@ pub struct ImageLimit {
 
 impl ImageLimit {
     /// The width and height of the image at `path`, from its header, refused
-    /// when a side is longer than allowed.
+    /// when a side is longer than allowed or 0 (a GIF's screen may be 0 wide).
     pub fn allowed_size(&self, path: &Path) -> Result<(u32, u32), String> {
         let (w, h) = image_size(path)?;
+        if w == 0 || h == 0 {
+            return Err(format!("the image is empty ({w}x{h})"));
+        }
         if w > self.max_side || h > self.max_side {
             return Err(format!(
                 "{w}x{h} is too large for {} (at most {} pixels a side)",
