@@ -52,7 +52,7 @@ fn committed_figures_match_the_code() {
         );
         frames.push(frame);
     }
-    let overview = figure_one(&frames).unwrap();
+    let overview = figure_one(frames).unwrap();
     assert_matches(
         OVERVIEW_FILE,
         overview.width,

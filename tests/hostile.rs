@@ -374,9 +374,14 @@ fn devices_and_files_without_newlines_are_refused() {
 
 /// `args` run under an address-space limit of 2 GB (`ulimit -v`), less than a 16384x16384 frame with its depth buffer (2 GiB).
 fn run_in_2gb(dir: &Path, args: &str) -> Output {
+    run_capped(dir, 2_000_000, args)
+}
+
+/// `args` run in `dir` under an address-space limit of `kb` kilobytes.
+fn run_capped(dir: &Path, kb: u32, args: &str) -> Output {
     Command::new("sh")
         .current_dir(dir)
-        .args(["-c", &format!("ulimit -v 2000000 && exec {} {args}", bin())])
+        .args(["-c", &format!("ulimit -v {kb} && exec {} {args}", bin())])
         .output()
         .unwrap()
 }
@@ -1360,5 +1365,105 @@ fn negative_whole_numbers_and_numbers_past_f32_are_named() {
         &o,
         1,
         "big.obj: line 1: 1e39 is past the largest number a coordinate holds (about 3.4e38)",
+    );
+}
+
+// A fifth look (after `72a5a0d`): what the fourth left as it was.
+
+#[test]
+fn all_and_check_refuse_what_memory_cannot_hold_rather_than_abort() {
+    let dir = temp_dir("fifth-memory");
+    // Aborted in the overview's grid before, after fig2 to fig8 were written.
+    for kb in [300_000, 390_000] {
+        let o = run_capped(&dir, kb, "all --size 2048x2048 --focal 2048 --out figs");
+        refused(&o, 1, "out of memory");
+        assert!(err(&o).contains(" MB"), "{}", err(&o));
+        let left = fs::read_dir(&*dir).unwrap().flat_map(|d| {
+            let d = d.unwrap().path();
+            match d.is_dir() {
+                true => fs::read_dir(d)
+                    .unwrap()
+                    .map(|e| e.unwrap().path())
+                    .collect(),
+                false => vec![d],
+            }
+        });
+        assert_eq!(left.count(), 0, "under {kb} KB");
+    }
+    // Aborted in a hypothesis's frame before.
+    let o = run_in(
+        Some(&dir),
+        &[
+            "pixel-light",
+            "--size",
+            "4096x4096",
+            "--focal",
+            "4096",
+            "-o",
+            "big.png",
+        ],
+    );
+    assert!(o.status.success(), "{}", err(&o));
+    let o = run_capped(&dir, 1_000_000, "check big.png");
+    refused(
+        &o,
+        2,
+        "cannot check big.png: out of memory: a 4096x4096 screenshot needs about 1343 MB to check",
+    );
+}
+
+#[test]
+fn all_and_report_write_every_file_or_none() {
+    let dir = temp_dir("fifth-all-or-none");
+    let figs = dir.join("figs");
+    fs::create_dir(&figs).unwrap();
+    fs::write(figs.join("fig2-points.png"), "mine").unwrap();
+    // The fourth of seven figures cannot be written: before, fig2 to fig4
+    // were new and fig5 on old.
+    fs::create_dir(figs.join("fig5-depth.png")).unwrap();
+    let o = run_in(Some(&dir), &["all", "--out", "figs"]);
+    refused(&o, 1, "fig5-depth.png: it is a folder");
+    let mut left: Vec<_> = fs::read_dir(&figs)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    left.sort();
+    assert_eq!(left, ["fig2-points.png", "fig5-depth.png"]);
+    assert_eq!(
+        fs::read_to_string(figs.join("fig2-points.png")).unwrap(),
+        "mine"
+    );
+    // The report's last file, after a minute of measuring.
+    let out = dir.join("report");
+    fs::create_dir(&out).unwrap();
+    fs::write(out.join("report.md"), "mine").unwrap();
+    fs::create_dir(out.join("heat-fig7-vs-fig8.png")).unwrap();
+    let o = run_in(Some(&dir), &["report", "--quick", "--out", "report"]);
+    refused(&o, 1, "heat-fig7-vs-fig8.png: it is a folder");
+    assert_eq!(fs::read_to_string(out.join("report.md")).unwrap(), "mine");
+    assert_eq!(fs::read_dir(&out).unwrap().count(), 2);
+}
+
+#[test]
+fn check_says_which_folders_lie_too_deep_to_look_into() {
+    // Passed over without a word before.
+    let dir = temp_dir("fifth-deep");
+    let mut deep = dir.join("course");
+    for k in 1..=18 {
+        deep = deep.join(format!("d{k}"));
+    }
+    fs::create_dir_all(&deep).unwrap();
+    fs::create_dir_all(dir.join("course/d1/e2")).unwrap();
+    let figure = Path::new(env!("CARGO_MANIFEST_DIR")).join("steps/fig5-depth.png");
+    fs::copy(&figure, deep.join("shot.png")).unwrap();
+    fs::copy(&figure, dir.join("course/d1/shot.png")).unwrap();
+    let o = run_in(Some(&dir), &["check", "course"]);
+    assert_eq!(o.status.code(), Some(0), "{}", err(&o));
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(out.contains("1 files: matches 1"), "{out}");
+    let deep: String = (1..=17).map(|k| format!("/d{k}")).collect();
+    assert_eq!(
+        warnings(&o),
+        [format!("warning: course{deep} is more than 16 folders down: not looked into").as_str()]
     );
 }

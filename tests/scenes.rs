@@ -707,3 +707,19 @@ fn rows_draw_shared_edges_twice_and_edges_do_not() {
     // where truncation moves the rows rasterizer's corners by up to 1.5 pixels.
     assert_eq!(shifted, 3222);
 }
+
+#[test]
+fn a_texture_coordinate_of_u_alone_has_a_v_of_0() {
+    // The format allows `vt u`; tobj refused it ("vt 0.5" stopped the model).
+    let dir = TempDir::new("vt-u");
+    let obj = |vt: [&str; 3]| {
+        format!(
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt {}\nvt {}\nvt {}\nf 1/1 2/2 3/3\n",
+            vt[0], vt[1], vt[2]
+        )
+    };
+    let alone = load_obj(&dir.file("u.obj", obj(["0.25", "0.5", "0.75"]))).unwrap();
+    let both = load_obj(&dir.file("uv.obj", obj(["0.25 0", "0.5 0", "0.75 0"]))).unwrap();
+    assert_eq!(alone.uvs.len(), 3);
+    assert_eq!(alone.uvs, both.uvs);
+}

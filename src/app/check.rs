@@ -1,7 +1,7 @@
 //! `rasterlab check`: reading a student's screenshot or rows printout, running the
 //! checker of [`crate::measure::check`], and writing its report and heat map.
 
-use crate::app::image_io::{write_image, WriteError};
+use crate::app::image_io::{AllOrNone, WriteError};
 use crate::app::progress::Progress;
 use crate::app::streams::printable;
 use crate::measure::check::check_image;
@@ -256,6 +256,12 @@ fn light_explains(searched: &ImageCheck, given: &ImageCheck) -> bool {
             .is_none_or(|g| s.errors.interior_rmse <= 0.5 * g.errors.interior_rmse)
 }
 
+/// The most memory a check holds at once, in bytes a pixel of the screenshot:
+/// measured, 67 to 73 (the peak resident size checking a window's render
+/// after the camera moved, 1600x1000, and a blue desktop, 1280x1024), with a
+/// tenth more for room.
+const CHECK_BYTES_A_PIXEL: usize = 80;
+
 /// The largest side checked: a screenshot is a window, and each hypothesis draws
 /// several frames of its size.
 pub const MAX_CHECK_SIDE: u32 = 4096;
@@ -291,6 +297,19 @@ fn check_screenshot(
     stem: &str,
     options: &CheckOptions,
 ) -> Result<(ImageCheck, Vec<PathBuf>), CheckError> {
+    // Asked for at once (and given back), so that a screenshot too large for
+    // the memory there is is refused rather than aborting a hypothesis in.
+    let bytes =
+        (observed.width as usize * observed.height as usize).saturating_mul(CHECK_BYTES_A_PIXEL);
+    if Vec::<u8>::new().try_reserve_exact(bytes).is_err() {
+        return Err(CheckError::Run(format!(
+            "cannot check {}: out of memory: a {}x{} screenshot needs about {} to check",
+            crate::app::image_io::describe(path),
+            observed.width,
+            observed.height,
+            crate::pipeline::target::megabytes(bytes)
+        )));
+    }
     // The screenshot as given, kept while a part of it (or a render it is part
     // of) is checked instead.
     let mut given = None;
@@ -608,12 +627,14 @@ fn check_screenshot(
             Some(f) => format!("{stem} against Figure {} as fitted", f.hypothesis.figure()),
             None => format!("{stem}: not a lab 3 image; the closest stage"),
         };
-        let heat = heat_map_picture(&observed, &check.expected, &title)
-            .expect("the expected image has the screenshot's size");
         let heat_path = dir.join(format!("{stem}-heat.png"));
-        write_image(&heat, &heat_path)?;
+        let heat = heat_map_picture(&observed, &check.expected, &title)
+            .map_err(|why| WriteError::new(&heat_path, why))?;
         let expected_path = dir.join(format!("{stem}-expected.png"));
-        write_image(&check.expected, &expected_path)?;
+        let mut files = AllOrNone::default();
+        files.image(&heat, &heat_path)?;
+        files.image(&check.expected, &expected_path)?;
+        files.commit()?;
         written.extend([heat_path, expected_path]);
     }
     Ok((check, written))
@@ -702,10 +723,15 @@ pub const MAX_CHECK_FILES: usize = 100_000;
 const MAX_CHECK_DEPTH: usize = 16;
 
 /// The files `check` is given: each FILE as it is, and each folder's files
-/// (hidden ones left out), recursively, in name order. A link is listed, not
-/// followed into a folder, so no loop is walked.
-pub fn submission_files(inputs: &[PathBuf]) -> Result<Vec<PathBuf>, CheckError> {
-    fn walk(dir: &Path, depth: usize, out: &mut Vec<PathBuf>) -> Result<(), CheckError> {
+/// (hidden ones left out), recursively, in name order, with the folders passed
+/// over for lying more than [`MAX_CHECK_DEPTH`] folders down. A link is
+/// listed, not followed into a folder, so no loop is walked.
+pub fn submission_files(inputs: &[PathBuf]) -> Result<(Vec<PathBuf>, Vec<PathBuf>), CheckError> {
+    struct Found {
+        files: Vec<PathBuf>,
+        too_deep: Vec<PathBuf>,
+    }
+    fn walk(dir: &Path, depth: usize, found: &mut Found) -> Result<(), CheckError> {
         let read = std::fs::read_dir(dir).map_err(|e| {
             CheckError::Run(format!("cannot read the folder {}: {e}", dir.display()))
         })?;
@@ -719,7 +745,7 @@ pub fn submission_files(inputs: &[PathBuf]) -> Result<Vec<PathBuf>, CheckError> 
             }
             let is_dir = entry.file_type().is_ok_and(|t| t.is_dir());
             entries.push((entry.path(), is_dir));
-            if out.len() + entries.len() > MAX_CHECK_FILES {
+            if found.files.len() + entries.len() > MAX_CHECK_FILES {
                 return Err(CheckError::Run(format!(
                     "more than {MAX_CHECK_FILES} files under {}: check fewer at a time",
                     dir.display()
@@ -729,22 +755,25 @@ pub fn submission_files(inputs: &[PathBuf]) -> Result<Vec<PathBuf>, CheckError> 
         entries.sort();
         for (path, is_dir) in entries {
             match is_dir {
-                true if depth < MAX_CHECK_DEPTH => walk(&path, depth + 1, out)?,
-                true => {}
-                false => out.push(path),
+                true if depth < MAX_CHECK_DEPTH => walk(&path, depth + 1, found)?,
+                true => found.too_deep.push(path),
+                false => found.files.push(path),
             }
         }
         Ok(())
     }
-    let mut files = Vec::new();
+    let mut found = Found {
+        files: Vec::new(),
+        too_deep: Vec::new(),
+    };
     for input in inputs {
         // symlink_metadata: a link to a folder is checked as the file it is.
         match std::fs::symlink_metadata(input) {
-            Ok(m) if m.is_dir() => walk(input, 0, &mut files)?,
-            _ => files.push(input.clone()),
+            Ok(m) if m.is_dir() => walk(input, 0, &mut found)?,
+            _ => found.files.push(input.clone()),
         }
     }
-    Ok(files)
+    Ok((found.files, found.too_deep))
 }
 
 /// Checks every file, on `threads` threads, in order: one [`FileCheck`] each,
@@ -831,7 +860,17 @@ pub fn check_many(
             printable(&csv.display().to_string())
         )));
     }
-    let files = submission_files(inputs)?;
+    let (files, too_deep) = submission_files(inputs)?;
+    if let Some(first) = too_deep.first() {
+        let more = match too_deep.len() {
+            1 => String::new(),
+            n => format!(" (and {} more such folders)", n - 1),
+        };
+        crate::say!(
+            "warning: {} is more than {MAX_CHECK_DEPTH} folders down: not looked into{more}",
+            printable(&first.display().to_string())
+        );
+    }
     let is_input = |csv: &Path| {
         let csv = csv.canonicalize();
         files.iter().any(|f| {

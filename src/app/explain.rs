@@ -574,7 +574,7 @@ pub fn explain_shared(corners: &[(f32, f32); 4]) -> Result<Frame, String> {
         frame: panel(edge),
         label: String::new(),
     });
-    super::overview::grid(&panels).ok_or_else(|| "panels of different sizes".to_string())
+    super::overview::grid(&panels)
 }
 
 /// How many pixels of `mesh` two triangles of one flat surface (same normal and

@@ -98,27 +98,36 @@ pub fn write_image(frame: &Frame, path: &Path) -> Result<(), WriteError> {
 /// the image encoded whole first, so nothing is written on failure.
 pub fn write_rgb(rgb: &[u8], width: u32, height: u32, path: &Path) -> Result<(), WriteError> {
     let format = ImageFormat::of(path).unwrap_or(ImageFormat::Png);
-    write_with(path, |mut out| {
-        let encoded = match format {
-            ImageFormat::Png => image::ImageEncoder::write_image(
-                image::codecs::png::PngEncoder::new(&mut *out),
-                rgb,
-                width,
-                height,
-                image::ExtendedColorType::Rgb8,
-            ),
-            ImageFormat::Bmp => image::ImageEncoder::write_image(
-                image::codecs::bmp::BmpEncoder::new(&mut out),
-                rgb,
-                width,
-                height,
-                image::ExtendedColorType::Rgb8,
-            ),
-        };
-        encoded.map_err(|e| match e {
-            image::ImageError::IoError(e) => e,
-            e => io::Error::other(e.to_string()),
-        })
+    write_with(path, |out| encode(out, format, rgb, width, height))
+}
+
+/// 8-bit RGB rows encoded as `format` into `out`.
+fn encode(
+    mut out: &mut dyn Write,
+    format: ImageFormat,
+    rgb: &[u8],
+    width: u32,
+    height: u32,
+) -> io::Result<()> {
+    let encoded = match format {
+        ImageFormat::Png => image::ImageEncoder::write_image(
+            image::codecs::png::PngEncoder::new(&mut *out),
+            rgb,
+            width,
+            height,
+            image::ExtendedColorType::Rgb8,
+        ),
+        ImageFormat::Bmp => image::ImageEncoder::write_image(
+            image::codecs::bmp::BmpEncoder::new(&mut out),
+            rgb,
+            width,
+            height,
+            image::ExtendedColorType::Rgb8,
+        ),
+    };
+    encoded.map_err(|e| match e {
+        image::ImageError::IoError(e) => e,
+        e => io::Error::other(e.to_string()),
     })
 }
 
@@ -208,28 +217,58 @@ pub fn write_with(
     }
 }
 
-/// Writes several files as one: every destination is checked and every
-/// temporary file written before any is renamed into place, so a path that
-/// cannot be written leaves the others as they were (an OBJ and its MTL).
-pub fn write_all_or_none(files: &[(&Path, &[u8])]) -> Result<(), WriteError> {
-    let mut staged = Vec::new();
-    for &(path, bytes) in files {
+/// Files written as one, each staged in full as it comes (so only one image is
+/// held encoded at a time) and all renamed into place by [`AllOrNone::commit`]:
+/// a file that cannot be written leaves every other as it was, the figures of
+/// `all` and the files of `report` as much as an OBJ and its MTL. Dropped
+/// without a commit, it removes what it staged.
+#[derive(Default)]
+pub struct AllOrNone {
+    staged: Vec<(PathBuf, Staged)>,
+}
+
+impl AllOrNone {
+    /// Stages `frame` as the image `path` names (8-bit RGB).
+    pub fn image(&mut self, frame: &Frame, path: &Path) -> Result<(), WriteError> {
+        let rgb = frame
+            .try_to_rgb8()
+            .map_err(|why| WriteError::new(path, why))?;
+        let format = ImageFormat::of(path).unwrap_or(ImageFormat::Png);
+        self.file(path, |out| {
+            encode(out, format, &rgb, frame.width, frame.height)
+        })
+    }
+
+    /// Stages `bytes` as the file `path`.
+    pub fn bytes(&mut self, path: &Path, bytes: &[u8]) -> Result<(), WriteError> {
+        self.file(path, |out| out.write_all(bytes))
+    }
+
+    fn file(
+        &mut self,
+        path: &Path,
+        write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
+    ) -> Result<(), WriteError> {
         match destination(path)? {
             Destination::File(target) => {
-                staged.push((path, stage(path, &target, |out| out.write_all(bytes))?))
+                let staged = stage(path, &target, write)?;
+                self.staged.push((path.to_path_buf(), staged));
+                Ok(())
             }
-            _ => {
-                return Err(WriteError::new(
-                    path,
-                    "not a regular file: a model and its materials are written as files",
-                ))
-            }
+            _ => Err(WriteError::new(
+                path,
+                "not a regular file: files that belong together are written as files",
+            )),
         }
     }
-    for (path, s) in staged {
-        commit(path, s)?;
+
+    /// Renames every staged file into place, in the order staged.
+    pub fn commit(self) -> Result<(), WriteError> {
+        for (path, staged) in self.staged {
+            commit(&path, staged)?;
+        }
+        Ok(())
     }
-    Ok(())
 }
 
 /// A temporary file written in full, and the name it will take.

@@ -22,46 +22,51 @@ pub struct Panel {
     pub label: String,
 }
 
-/// Figure 1 from Figures 2 to 8, in [`Figure::FIGURES`] order. `None` if there are
-/// not seven of them or their sizes differ.
-pub fn figure_one(figures: &[Frame]) -> Option<Frame> {
+/// Figure 1 from Figures 2 to 8, in [`Figure::FIGURES`] order, taken as they
+/// are (their colours; no copy of them is made). Refused, saying why, if there
+/// are not seven of them, their sizes differ or the memory cannot be had.
+pub fn figure_one(figures: Vec<Frame>) -> Result<Frame, String> {
     if figures.len() != Figure::FIGURES.len() {
-        return None;
+        return Err(format!("{} figures, not seven", figures.len()));
     }
+    let heat = heat_map(&figures[5], &figures[6])?;
     let mut panels: Vec<Panel> = figures
-        .iter()
+        .into_iter()
         .zip(Figure::FIGURES)
         .enumerate()
         .map(|(i, (frame, figure))| Panel {
-            frame: frame.clone(),
+            frame,
             label: format!("Figure {}: {}", i + 2, figure.label()),
         })
         .collect();
     // Single pixels vanish when the overview is shown small: points as 3 x 3 dots.
-    panels[0].frame = dilate(&figures[0]);
+    panels[0].frame = dilate(&panels[0].frame)?;
     panels.push(Panel {
-        frame: heat_map(&figures[5], &figures[6])?,
+        frame: heat,
         label: format!("7 vs 8: white = {HEAT_FULL_SCALE}+ apart"),
     });
     grid(&panels)
 }
 
-/// Lays out same-sized panels in a grid, each with its label beneath.
-pub fn grid(panels: &[Panel]) -> Option<Frame> {
-    let first = panels.first()?;
+/// Lays out same-sized panels in a grid, each with its label beneath; refused,
+/// saying why, if their sizes differ or the memory cannot be had.
+pub fn grid(panels: &[Panel]) -> Result<Frame, String> {
+    let Some(first) = panels.first() else {
+        return Err("no panels".into());
+    };
     let (fw, fh) = (first.frame.width, first.frame.height);
     if panels
         .iter()
         .any(|p| (p.frame.width, p.frame.height) != (fw, fh))
     {
-        return None;
+        return Err("panels of different sizes".into());
     }
     let count = panels.len() as u32;
     let (cols, rows) = (count.min(COLUMNS), count.div_ceil(COLUMNS));
     let cell_h = fh + LABEL_HEIGHT;
     let width = cols * fw + (cols - 1) * GUTTER;
     let height = rows * cell_h + (rows - 1) * GUTTER;
-    let mut canvas = Canvas::new(width, height, BACKGROUND);
+    let mut canvas = Canvas::try_new(width, height, BACKGROUND)?;
     for (i, panel) in panels.iter().enumerate() {
         let (col, row) = (i as u32 % COLUMNS, i as u32 / COLUMNS);
         let (x0, y0) = (col * (fw + GUTTER), row * (cell_h + GUTTER));
@@ -79,12 +84,13 @@ pub fn grid(panels: &[Panel]) -> Option<Frame> {
         let text_y = (y0 + fh) as i32 + (LABEL_HEIGHT as i32 - 8 * scale) / 2;
         canvas.text((x0 as i32 + 4, text_y), &panel.label, scale, LABEL);
     }
-    Some(canvas.frame)
+    Ok(canvas.frame)
 }
 
 /// Every lit pixel grown to a 3 x 3 dot.
-fn dilate(frame: &Frame) -> Frame {
-    let mut out = frame.clone();
+fn dilate(frame: &Frame) -> Result<Frame, String> {
+    let mut out = Frame::try_new(frame.width, frame.height, false)?;
+    out.color.copy_from_slice(&frame.color);
     let (w, h) = (frame.width as i64, frame.height as i64);
     for y in 0..h {
         for x in 0..w {
@@ -100,7 +106,7 @@ fn dilate(frame: &Frame) -> Frame {
             }
         }
     }
-    out
+    Ok(out)
 }
 
 #[cfg(test)]
@@ -134,14 +140,14 @@ mod tests {
         // The label "I" is drawn in white somewhere under the first panel.
         let label_white = (2..cell).any(|y| (0..40).any(|x| f.rgb(x, y) == [255, 255, 255]));
         assert!(label_white);
-        assert!(grid(&[]).is_none());
+        assert_eq!(grid(&[]), Err("no panels".to_string()));
     }
 
     #[test]
     fn points_become_dots() {
         let mut f = Frame::new(5, 5);
         f.color[12] = 0x00ff_ffff;
-        let d = dilate(&f);
+        let d = dilate(&f).unwrap();
         assert_eq!(d.color.iter().filter(|&&c| c != 0).count(), 9);
     }
 }

@@ -17,24 +17,27 @@ fn heat(d: u8) -> u32 {
 
 /// The largest channel difference of two images per pixel, from black through
 /// red and yellow to white at [`HEAT_FULL_SCALE`] steps.
-pub fn heat_map(a: &Frame, b: &Frame) -> Option<Frame> {
+pub fn heat_map(a: &Frame, b: &Frame) -> Result<Frame, String> {
     if (a.width, a.height) != (b.width, b.height) {
-        return None;
+        return Err(format!(
+            "a heat map of a {}x{} image against a {}x{} one",
+            a.width, a.height, b.width, b.height
+        ));
     }
-    let mut out = Frame::new(a.width, a.height);
+    let mut out = Frame::try_new(a.width, a.height, false)?;
     for ((o, &p), &q) in out.color.iter_mut().zip(&a.color).zip(&b.color) {
         let (p, q) = (unpack(p), unpack(q));
         *o = heat((0..3).map(|i| p[i].abs_diff(q[i])).max().unwrap_or(0));
     }
-    Some(out)
+    Ok(out)
 }
 
 /// [`heat_map`] with a title above and a colour scale beneath, for pages that show
 /// it on its own.
-pub fn heat_map_picture(a: &Frame, b: &Frame, title: &str) -> Option<Frame> {
+pub fn heat_map_picture(a: &Frame, b: &Frame, title: &str) -> Result<Frame, String> {
     let map = heat_map(a, b)?;
     let (w, h) = (map.width.max(420), map.height);
-    let mut c = Canvas::new(w, h + 84, 0x00ff_ffff);
+    let mut c = Canvas::try_new(w, h + 84, 0x00ff_ffff)?;
     c.text((8, 6), title, 1, BLACK);
     for y in 0..h {
         let src = &map.color[(y * map.width) as usize..][..map.width as usize];
@@ -54,7 +57,7 @@ pub fn heat_map_picture(a: &Frame, b: &Frame, title: &str) -> Option<Frame> {
         1,
         BLACK,
     );
-    Some(c.frame)
+    Ok(c.frame)
 }
 
 #[cfg(test)]

@@ -20,14 +20,25 @@ pub struct Canvas {
 
 impl Canvas {
     pub fn new(width: u32, height: u32, background: Rgb) -> Self {
-        let mut frame = Frame::new(width, height);
+        Canvas::of(Frame::new(width, height), background)
+    }
+
+    /// [`Canvas::new`], refused when its memory cannot be had.
+    pub fn try_new(width: u32, height: u32, background: Rgb) -> Result<Self, String> {
+        Ok(Canvas::of(
+            Frame::try_new(width, height, false)?,
+            background,
+        ))
+    }
+
+    fn of(mut frame: Frame, background: Rgb) -> Self {
         frame.color.fill(background);
         Canvas {
-            frame,
             bounds: Bounds {
-                x: 0..width as i32,
-                y: 0..height as i32,
+                x: 0..frame.width as i32,
+                y: 0..frame.height as i32,
             },
+            frame,
         }
     }
 

@@ -752,7 +752,8 @@ impl<R: BufRead> Lines<R> {
 
     /// A statement as tobj is given it: in an OBJ file, a polyline left out
     /// (tobj would fill it as a face) and a vertex's colour (`v x y z r g b`,
-    /// which tobj wants on every vertex or none) dropped; in an MTL file, only
+    /// which tobj wants on every vertex or none) dropped, a texture coordinate
+    /// of u alone given its v of 0; in an MTL file, only
     /// what is drawn from (`newmtl`, `Kd`, `map_Kd`), so that a statement of
     /// the format read otherwise (`Ka spectral`, `d -halo`, `illum 2.0`) cannot
     /// stop the model loading. A statement left out stays as a comment, so
@@ -772,6 +773,11 @@ impl<R: BufRead> Lines<R> {
             (Kind::Obj, "v") if words.clone().count() >= 6 => {
                 let xyz: Vec<&str> = words.take(3).collect();
                 format!("v {}\n", xyz.join(" "))
+            }
+            // The format lets a texture coordinate give u alone (v is then 0),
+            // which tobj refuses.
+            (Kind::Obj, "vt") if words.clone().count() == 1 => {
+                format!("vt {} 0\n", words.next().unwrap_or("0"))
             }
             (Kind::Obj, _) => line,
             (Kind::Mtl, "map_Kd") if words.next().is_none() => {
