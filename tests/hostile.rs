@@ -1467,3 +1467,79 @@ fn check_says_which_folders_lie_too_deep_to_look_into() {
         [format!("warning: course{deep} is more than 16 folders down: not looked into").as_str()]
     );
 }
+
+#[test]
+fn models_and_scenes_larger_than_memory_are_refused_not_aborted() {
+    let dir = temp_dir("fifth-model-memory");
+    // Aborted in tobj (exit 134) under 150 to 300 MB before.
+    let o = run_in(
+        Some(&dir),
+        &["export", "--scene", "grid:1000000", "-o", "g.obj"],
+    );
+    assert!(o.status.success(), "{}", err(&o));
+    let o = run_capped(&dir, 250_000, "depth --size 64x64 --scene g.obj -o x.png");
+    refused(
+        &o,
+        1,
+        "g.obj: out of memory: its 94 MB need about 376 MB to load",
+    );
+    let o = run_capped(
+        &dir,
+        300_000,
+        "depth --size 64x64 --scene sphere:4000000 -o x.png",
+    );
+    refused(
+        &o,
+        1,
+        "out of memory: scene sphere:4000000 needs about 320 MB",
+    );
+    assert!(!dir.join("x.png").exists());
+}
+
+#[test]
+fn standard_output_by_its_system_name_is_written_into_a_redirected_file() {
+    // "its name has no ending to choose the image format by" before.
+    let dir = temp_dir("fifth-stdout");
+    let o = Command::new("sh")
+        .current_dir(&*dir)
+        .args([
+            "-c",
+            &format!("exec {} depth -o /dev/stdout > s.png", bin()),
+        ])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", err(&o));
+    let o = run_in(Some(&dir), &["depth", "-o", "f.png"]);
+    assert!(o.status.success(), "{}", err(&o));
+    assert_eq!(
+        fs::read(dir.join("s.png")).unwrap(),
+        fs::read(dir.join("f.png")).unwrap()
+    );
+}
+
+#[test]
+fn check_reads_a_window_dump_without_alpha_and_not_its_own_pictures() {
+    let dir = temp_dir("fifth-check");
+    let figure = Path::new(env!("CARGO_MANIFEST_DIR")).join("steps/fig5-depth.png");
+    // An OpenGL read-back: Figure 5's colours, alpha 0 everywhere. Seen over
+    // white before: "one colour, (255, 255, 255)".
+    let rgb = image::open(&figure).unwrap().to_rgb8();
+    let mut rgba = image::RgbaImage::new(rgb.width(), rgb.height());
+    for (o, p) in rgba.pixels_mut().zip(rgb.pixels()) {
+        *o = image::Rgba([p[0], p[1], p[2], 0]);
+    }
+    rgba.save(dir.join("dump.png")).unwrap();
+    let o = run_in(Some(&dir), &["check", "dump.png"]);
+    assert_eq!(o.status.code(), Some(0), "{}", err(&o));
+    // `--out` the folder being checked: the second run checked the first's
+    // heat map and expected image as students' files.
+    fs::create_dir(dir.join("course")).unwrap();
+    fs::copy(&figure, dir.join("course/shot.png")).unwrap();
+    for _ in 0..2 {
+        let o = run_in(Some(&dir), &["check", "course", "--out", "course"]);
+        assert_eq!(o.status.code(), Some(0), "{}", err(&o));
+        let out = String::from_utf8_lossy(&o.stdout);
+        assert!(out.contains("\n1 files: matches 1,"), "{out}");
+    }
+    assert_eq!(fs::read_dir(dir.join("course")).unwrap().count(), 3);
+}

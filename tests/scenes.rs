@@ -148,7 +148,7 @@ fn bad_files_are_one_line_errors() {
             "f 1 2 3/3/3/3\n",
             "line 4: face corner '3/3/3/3' is not",
         ),
-        ("comment", "f 1 2 3#\n", "line 4: face corner '3#' is not"),
+        ("letter", "f 1 2 3x\n", "line 4: face corner '3x' is not"),
         (
             "huge",
             "f 1 2 99999999999999999999\n",
@@ -722,4 +722,52 @@ fn a_texture_coordinate_of_u_alone_has_a_v_of_0() {
     let both = load_obj(&dir.file("uv.obj", obj(["0.25 0", "0.5 0", "0.75 0"]))).unwrap();
     assert_eq!(alone.uvs.len(), 3);
     assert_eq!(alone.uvs, both.uvs);
+}
+
+#[test]
+fn what_exporters_write_that_tobj_would_misread_is_read_or_warned_of() {
+    let dir = TempDir::new("fifth-obj");
+    let tri = "v -1 -1 -1 # a corner\nv 1 0 0\nv 0 1 0\n";
+    let warned = |name: &str, text: String| {
+        let path = dir.file(name, text);
+        let (mesh, _, warnings) = rasterlab::scene::obj::read_obj(&path).unwrap();
+        let shown = path.display().to_string();
+        let warnings: Vec<String> = warnings
+            .iter()
+            .map(|w| w.replacen(&format!("{shown}: "), "", 1))
+            .collect();
+        (mesh, warnings)
+    };
+    // A bare `f` stopped the model ("invalid polygon", no line); a comment
+    // after a vertex was "color parse error".
+    let (mesh, warnings) = warned("f.obj", format!("{tri}f\nf 1 2 3 # the face\nf 3 2 1#\n"));
+    assert_eq!(mesh.positions[0], Vec3::new(-1.0, 1.0, 1.0));
+    assert_eq!(mesh.faces.len(), 2);
+    assert_eq!(
+        warnings,
+        ["line 4: a face needs at least three corners: left out"]
+    );
+    // Texture coordinates named and never given were dropped without a word.
+    let (_, warnings) = warned("vt.obj", format!("{tri}f 1/1 2/1 3/2\n"));
+    assert_eq!(
+        warnings,
+        ["line 4: texture coordinate 2 is past the end: the file has 0: the faces' texture coordinates are left out"]
+    );
+    // map_Kd with options only stopped the model, where a bare one is left
+    // out; `-s nan nan nan` took the NaNs for the file's name.
+    dir.file(
+        "m.mtl",
+        "newmtl a\nKd 1 0 0\nmap_Kd -s nan nan nan pal.png\nnewmtl b\nKd 0 1 0\nmap_Kd -clamp on\n",
+    );
+    let text =
+        format!("mtllib m.mtl\n{tri}vt 0 0\nusemtl a\nf 1/1 2/1 3/1\nusemtl b\nf 1/1 2/1 3/1\n");
+    let (_, warnings) = warned("m.obj", text);
+    assert_eq!(
+        warnings,
+        [
+            "material a: map_Kd pal.png is not there: its Kd is drawn instead",
+            "material b: map_Kd names no file, only options: left out",
+            "material b: map_Kd option -clamp is not supported: left out",
+        ]
+    );
 }

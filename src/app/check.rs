@@ -72,8 +72,13 @@ fn read_screenshot_noting_jpeg(path: &Path) -> Result<(Frame, bool), String> {
         .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
     let rgba = img.to_rgba8();
     let mut frame = Frame::new(rgba.width(), rgba.height());
+    // One alpha over the whole image says nothing of what was drawn: an
+    // OpenGL or SDL window read back often has 0 everywhere. Its colours are
+    // taken as they are; an image whose alpha varies is seen over white.
+    let first = rgba.pixels().next().map_or(255, |p| p[3]);
+    let opaque = rgba.pixels().all(|p| p[3] == first);
     for (c, p) in frame.color.iter_mut().zip(rgba.pixels()) {
-        let a = p[3] as u32;
+        let a = if opaque { 255 } else { p[3] as u32 };
         let [r, g, b] = [p[0], p[1], p[2]].map(|v| (v as u32 * a + 255 * (255 - a) + 127) / 255);
         *c = r << 16 | g << 8 | b;
     }
@@ -860,7 +865,19 @@ pub fn check_many(
             printable(&csv.display().to_string())
         )));
     }
-    let (files, too_deep) = submission_files(inputs)?;
+    let (mut files, too_deep) = submission_files(inputs)?;
+    // The pictures an earlier `check --out` wrote into a folder being checked
+    // are not a student's: checked, they would add a row (and a picture) a run.
+    if let Some(out) = options.out.as_ref().and_then(|o| o.canonicalize().ok()) {
+        let ours = |f: &PathBuf| {
+            let name = f
+                .file_name()
+                .map_or(String::new(), |n| n.to_string_lossy().into_owned());
+            (name.ends_with("-heat.png") || name.ends_with("-expected.png"))
+                && f.canonicalize().is_ok_and(|f| f.starts_with(&out))
+        };
+        files.retain(|f| !ours(f));
+    }
     if let Some(first) = too_deep.first() {
         let more = match too_deep.len() {
             1 => String::new(),

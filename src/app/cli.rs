@@ -557,10 +557,10 @@ impl<'a> Parts<'a> {
 pub const MAX_WARNINGS: usize = 64;
 
 /// The scene a `--scene` spec names: a bad spec is a usage error, a model file
-/// that cannot be read a failure. Warnings about the file go to stderr.
+/// that cannot be read (or a scene too large for the memory there is) a failure. Warnings about the file go to stderr.
 pub fn load_scene(spec: &str) -> Result<Scene, Failure> {
     let scene = parse_scene(spec).map_err(|e| {
-        if spec.to_lowercase().ends_with(".obj") {
+        if spec.to_lowercase().ends_with(".obj") || e.starts_with("out of memory") {
             Failure::Run(e)
         } else {
             Failure::Usage(e)

@@ -150,8 +150,16 @@ enum Destination {
     File(PathBuf),
 }
 
+/// Whether `path` names standard output: `-`, or one of the system's names
+/// for it, which may stand for a file the shell opened (`-o /dev/stdout >
+/// x.png`): written through the stream, not by renaming over that file.
+pub fn names_stdout(path: &Path) -> bool {
+    let names = ["-", "/dev/stdout", "/dev/fd/1", "/proc/self/fd/1"];
+    names.iter().any(|n| path.as_os_str() == *n)
+}
+
 fn destination(path: &Path) -> Result<Destination, WriteError> {
-    if path.as_os_str() == "-" {
+    if names_stdout(path) {
         return Ok(Destination::Stdout);
     }
     let target = follow_links(path).map_err(|why| WriteError::new(path, why))?;

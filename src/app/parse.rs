@@ -127,13 +127,14 @@ pub fn whole(s: &str, min: u64, max: u64) -> Result<u64, String> {
     }
 }
 
-/// Where an image goes: `-` for standard output, a file whose name ends in `.png`
-/// or `.bmp` (the format follows the name), or an existing device or FIFO such as
-/// /dev/null (PNG).
+/// Where an image goes: `-` (or /dev/stdout) for standard output, a file whose
+/// name ends in `.png` or `.bmp` (the format follows the name), or an existing
+/// device or FIFO such as /dev/null (PNG).
 pub fn image_path(s: &str) -> Result<std::path::PathBuf, String> {
     let path = std::path::PathBuf::from(s);
     let special = std::fs::metadata(&path).is_ok_and(|m| !m.is_file() && !m.is_dir());
-    if s == "-" || special || crate::app::image_io::ImageFormat::of(&path).is_some() {
+    let stdout = crate::app::image_io::names_stdout(&path);
+    if stdout || special || crate::app::image_io::ImageFormat::of(&path).is_some() {
         Ok(path)
     } else {
         let why = match path.extension() {
