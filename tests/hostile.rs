@@ -1543,3 +1543,24 @@ fn check_reads_a_window_dump_without_alpha_and_not_its_own_pictures() {
     }
     assert_eq!(fs::read_dir(dir.join("course")).unwrap().count(), 3);
 }
+
+#[test]
+fn valid_images_in_forms_not_read_are_not_called_damaged() {
+    // "a damaged or cut-short JPEG image (... can only parse 8-bit images ...)"
+    // before, and so for the BMPs.
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/unusual");
+    for (file, form) in [
+        ("jpeg-12-bit.jpg", "a JPEG image in a form not read here ("),
+        ("bmp-os2-v2.bmp", "a BMP image in a form not read here ("),
+        (
+            "bmp-jpeg-compressed.bmp",
+            "a BMP image in a form not read here (",
+        ),
+    ] {
+        let path = dir.join(file).display().to_string();
+        let o = run(&["check", &path]);
+        refused(&o, 2, &format!("cannot read {path}: {form}"));
+        let o = run(&["pixel-light", "--texture", &path, "-o", "/dev/null"]);
+        refused(&o, 1, form);
+    }
+}

@@ -41,6 +41,10 @@ fn numbers(s: &str, n: usize, what: &str) -> Result<Vec<f32>, String> {
         .iter()
         .map(|t| match t.trim().parse::<f32>() {
             Ok(v) if v.is_finite() => Ok(v),
+            // 1e39 reads as infinite in f32: past the range, not infinite.
+            Ok(_) if t.trim().parse::<f64>().is_ok_and(f64::is_finite) => Err(format!(
+                "'{t}' is past the largest number this holds (about 3.4e38) in '{s}'"
+            )),
             Ok(_) => Err(format!("'{t}' is not a finite number in '{s}'")),
             Err(_) => Err(format!("'{t}' is not a number in '{s}'")),
         })
@@ -243,6 +247,10 @@ mod tests {
         assert_eq!(
             vec3("1,nan,2").unwrap_err(),
             "'nan' is not a finite number in '1,nan,2'"
+        );
+        assert_eq!(
+            vec3("1,1e39,2").unwrap_err(),
+            "'1e39' is past the largest number this holds (about 3.4e38) in '1,1e39,2'"
         );
         assert_eq!(vec3("1,a,2").unwrap_err(), "'a' is not a number in '1,a,2'");
         assert!(positive("0").is_err());

@@ -278,25 +278,40 @@ const HEADER_BYTES: u64 = 16 << 20;
 
 /// Why an image of `format` could not be decoded, on one line (the decoders'
 /// messages can run over several).
+/// "a " before a format's name, "an " before "image".
+fn article(kind: &str) -> &'static str {
+    match kind.is_empty() {
+        true => "an ",
+        false => "a ",
+    }
+}
+
 fn damaged(format: Option<image::ImageFormat>, e: image::ImageError) -> String {
     let kind = format.map_or("".into(), |f| format!("{f:?} ").to_uppercase());
     if let image::ImageError::Limits(_) = e {
-        let a = match kind.is_empty() {
-            true => "an ",
-            false => "a ",
-        };
+        let a = article(&kind);
         return format!(
             "{a}{kind}image whose metadata (a colour profile or text) inflates past \
              {} MB or past the room for its pixels: not read",
             HEADER_BYTES >> 20
         );
     }
+    let unsupported = matches!(e, image::ImageError::Unsupported(_));
     let why = e
         .to_string()
         .split_whitespace()
         .collect::<Vec<_>>()
         .join(" ");
-    format!("a damaged or cut-short {kind}image ({why})")
+    // A valid file in a form the decoders do not read (a 12-bit JPEG, an
+    // OS/2 or compressed BMP) is not damaged: said so.
+    let form = ["not support", "only parse", "Unknown bitmap header"];
+    match unsupported || form.iter().any(|f| why.contains(f)) {
+        true => format!(
+            "{}{kind}image in a form not read here ({why})",
+            article(&kind)
+        ),
+        false => format!("a damaged or cut-short {kind}image ({why})"),
+    }
 }
 
 #[cfg(test)]
