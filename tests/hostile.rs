@@ -1445,7 +1445,7 @@ fn all_and_report_write_every_file_or_none() {
 }
 
 #[test]
-fn check_says_which_folders_lie_too_deep_to_look_into() {
+fn check_says_which_folders_it_does_not_look_into() {
     // Passed over without a word before.
     let dir = temp_dir("fifth-deep");
     let mut deep = dir.join("course");
@@ -1457,6 +1457,9 @@ fn check_says_which_folders_lie_too_deep_to_look_into() {
     let figure = Path::new(env!("CARGO_MANIFEST_DIR")).join("steps/fig5-depth.png");
     fs::copy(&figure, deep.join("shot.png")).unwrap();
     fs::copy(&figure, dir.join("course/d1/shot.png")).unwrap();
+    // A link to a folder made a row "unreadable ... a folder, not a regular
+    // file" and the exit status 1.
+    std::os::unix::fs::symlink("..", dir.join("course/d1/up")).unwrap();
     let o = run_in(Some(&dir), &["check", "course"]);
     assert_eq!(o.status.code(), Some(0), "{}", err(&o));
     let out = String::from_utf8_lossy(&o.stdout);
@@ -1464,7 +1467,10 @@ fn check_says_which_folders_lie_too_deep_to_look_into() {
     let deep: String = (1..=17).map(|k| format!("/d{k}")).collect();
     assert_eq!(
         warnings(&o),
-        [format!("warning: course{deep} is more than 16 folders down: not looked into").as_str()]
+        [
+            format!("warning: course{deep} is more than 16 folders down: not looked into"),
+            "warning: course/d1/up is a link to a folder: not followed".to_string()
+        ]
     );
 }
 

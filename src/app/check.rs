@@ -729,12 +729,12 @@ const MAX_CHECK_DEPTH: usize = 16;
 
 /// The files `check` is given: each FILE as it is, and each folder's files
 /// (hidden ones left out), recursively, in name order, with the folders passed
-/// over for lying more than [`MAX_CHECK_DEPTH`] folders down. A link is
-/// listed, not followed into a folder, so no loop is walked.
-pub fn submission_files(inputs: &[PathBuf]) -> Result<(Vec<PathBuf>, Vec<PathBuf>), CheckError> {
+/// over: more than [`MAX_CHECK_DEPTH`] folders down, or reached by a link
+/// (never followed, so no loop is walked).
+pub fn submission_files(inputs: &[PathBuf]) -> Result<(Vec<PathBuf>, Vec<PassedOver>), CheckError> {
     struct Found {
         files: Vec<PathBuf>,
-        too_deep: Vec<PathBuf>,
+        passed_over: Vec<PassedOver>,
     }
     fn walk(dir: &Path, depth: usize, found: &mut Found) -> Result<(), CheckError> {
         let read = std::fs::read_dir(dir).map_err(|e| {
@@ -749,6 +749,14 @@ pub fn submission_files(inputs: &[PathBuf]) -> Result<(Vec<PathBuf>, Vec<PathBuf
                 continue;
             }
             let is_dir = entry.file_type().is_ok_and(|t| t.is_dir());
+            // A link to a folder (`up -> ..`) is not walked into, as no
+            // link is followed into a folder; nor is it a file to check.
+            let linked_dir = entry.file_type().is_ok_and(|t| t.is_symlink())
+                && std::fs::metadata(entry.path()).is_ok_and(|m| m.is_dir());
+            if linked_dir {
+                found.passed_over.push(PassedOver::Link(entry.path()));
+                continue;
+            }
             entries.push((entry.path(), is_dir));
             if found.files.len() + entries.len() > MAX_CHECK_FILES {
                 return Err(CheckError::Run(format!(
@@ -761,7 +769,7 @@ pub fn submission_files(inputs: &[PathBuf]) -> Result<(Vec<PathBuf>, Vec<PathBuf
         for (path, is_dir) in entries {
             match is_dir {
                 true if depth < MAX_CHECK_DEPTH => walk(&path, depth + 1, found)?,
-                true => found.too_deep.push(path),
+                true => found.passed_over.push(PassedOver::TooDeep(path)),
                 false => found.files.push(path),
             }
         }
@@ -769,7 +777,7 @@ pub fn submission_files(inputs: &[PathBuf]) -> Result<(Vec<PathBuf>, Vec<PathBuf
     }
     let mut found = Found {
         files: Vec::new(),
-        too_deep: Vec::new(),
+        passed_over: Vec::new(),
     };
     for input in inputs {
         // symlink_metadata: a link to a folder is checked as the file it is.
@@ -778,7 +786,16 @@ pub fn submission_files(inputs: &[PathBuf]) -> Result<(Vec<PathBuf>, Vec<PathBuf
             _ => found.files.push(input.clone()),
         }
     }
-    Ok((found.files, found.too_deep))
+    Ok((found.files, found.passed_over))
+}
+
+/// A folder [`submission_files`] does not look into.
+#[derive(Debug, PartialEq)]
+pub enum PassedOver {
+    /// More than [`MAX_CHECK_DEPTH`] folders down.
+    TooDeep(PathBuf),
+    /// A link to a folder.
+    Link(PathBuf),
 }
 
 /// Checks every file, on `threads` threads, in order: one [`FileCheck`] each,
@@ -865,7 +882,25 @@ pub fn check_many(
             printable(&csv.display().to_string())
         )));
     }
-    let (mut files, too_deep) = submission_files(inputs)?;
+    let (mut files, passed_over) = submission_files(inputs)?;
+    let (deep, links): (Vec<&PassedOver>, Vec<&PassedOver>) = passed_over
+        .iter()
+        .partition(|p| matches!(p, PassedOver::TooDeep(_)));
+    let warn = |paths: &[&PassedOver], what: &str| {
+        if let Some(PassedOver::TooDeep(first) | PassedOver::Link(first)) = paths.first() {
+            let more = match paths.len() {
+                1 => String::new(),
+                n => format!(" (and {} more such folders)", n - 1),
+            };
+            let first = printable(&first.display().to_string());
+            crate::say!("warning: {first} {what}{more}");
+        }
+    };
+    warn(
+        &deep,
+        &format!("is more than {MAX_CHECK_DEPTH} folders down: not looked into"),
+    );
+    warn(&links, "is a link to a folder: not followed");
     // The pictures an earlier `check --out` wrote into a folder being checked
     // are not a student's: checked, they would add a row (and a picture) a run.
     if let Some(out) = options.out.as_ref().and_then(|o| o.canonicalize().ok()) {
@@ -877,16 +912,6 @@ pub fn check_many(
                 && f.canonicalize().is_ok_and(|f| f.starts_with(&out))
         };
         files.retain(|f| !ours(f));
-    }
-    if let Some(first) = too_deep.first() {
-        let more = match too_deep.len() {
-            1 => String::new(),
-            n => format!(" (and {} more such folders)", n - 1),
-        };
-        crate::say!(
-            "warning: {} is more than {MAX_CHECK_DEPTH} folders down: not looked into{more}",
-            printable(&first.display().to_string())
-        );
     }
     let is_input = |csv: &Path| {
         let csv = csv.canonicalize();
