@@ -302,11 +302,10 @@ fn check_screenshot(
     stem: &str,
     options: &CheckOptions,
 ) -> Result<(ImageCheck, Vec<PathBuf>), CheckError> {
-    // Asked for at once (and given back), so that a screenshot too large for
-    // the memory there is is refused rather than aborting a hypothesis in.
+    // Refused before any hypothesis draws a frame of its size.
     let bytes =
         (observed.width as usize * observed.height as usize).saturating_mul(CHECK_BYTES_A_PIXEL);
-    if Vec::<u8>::new().try_reserve_exact(bytes).is_err() {
+    if !crate::pipeline::target::memory_for(bytes) {
         return Err(CheckError::Run(format!(
             "cannot check {}: out of memory: a {}x{} screenshot needs about {} to check",
             crate::app::image_io::describe(path),

@@ -211,14 +211,16 @@ fn reserve(
     what: &str,
 ) -> Result<(), WriteError> {
     let bytes = (width as usize * height as usize).saturating_mul(per_pixel);
-    let mut probe = Vec::<u8>::new();
-    probe.try_reserve_exact(bytes).map_err(|_| {
-        let need = crate::pipeline::target::megabytes(bytes);
-        WriteError::new(
-            out,
-            format!("out of memory: {what} a {width}x{height} image needs {need}"),
-        )
-    })
+    match crate::pipeline::target::memory_for(bytes) {
+        true => Ok(()),
+        false => {
+            let need = crate::pipeline::target::megabytes(bytes);
+            Err(WriteError::new(
+                out,
+                format!("out of memory: {what} a {width}x{height} image needs {need}"),
+            ))
+        }
+    }
 }
 
 /// Writes `mesh` as an OBJ file at `path` and its materials as an MTL file
@@ -585,8 +587,7 @@ pub const STRESS_MEMORY: usize = 3_200_000_000;
 /// Refuses the full catalogue up front, with what it needs, when that much memory
 /// cannot be had, instead of aborting half way through it.
 pub fn stress_fits(quick: bool) -> Result<(), String> {
-    let mut probe = Vec::<u8>::new();
-    match quick || probe.try_reserve_exact(STRESS_MEMORY).is_ok() {
+    match quick || crate::pipeline::target::memory_for(STRESS_MEMORY) {
         true => Ok(()),
         false => Err(format!(
             "out of memory: stress needs about {} of memory (its 16000 x 16000 case); stress --quick needs about 20 MB",

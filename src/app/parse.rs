@@ -41,8 +41,7 @@ fn numbers(s: &str, n: usize, what: &str) -> Result<Vec<f32>, String> {
         .iter()
         .map(|t| match t.trim().parse::<f32>() {
             Ok(v) if v.is_finite() => Ok(v),
-            // 1e39 reads as infinite in f32: past the range, not infinite.
-            Ok(_) if t.trim().parse::<f64>().is_ok_and(f64::is_finite) => Err(format!(
+            Ok(_) if crate::scene::input::past_f32(t.trim()) => Err(format!(
                 "'{t}' is past the largest number this holds (about 3.4e38) in '{s}'"
             )),
             Ok(_) => Err(format!("'{t}' is not a finite number in '{s}'")),

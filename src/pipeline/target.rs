@@ -170,6 +170,13 @@ impl Frame {
     }
 }
 
+/// Whether `bytes` of memory can be had now: asked for at once and given
+/// back, so that work too large for the memory there is is refused before it
+/// starts rather than aborting half way (Rust's allocations abort on failure).
+pub fn memory_for(bytes: usize) -> bool {
+    Vec::<u8>::new().try_reserve_exact(bytes).is_ok()
+}
+
 /// A byte count as people read it: "805 MB".
 pub fn megabytes(bytes: usize) -> String {
     format!("{} MB", bytes.div_ceil(1_000_000))

@@ -14,6 +14,12 @@ use std::io::{BufReader, Read};
 use std::os::unix::fs::{FileTypeExt, OpenOptionsExt};
 use std::path::Path;
 
+/// Whether `word` is a number past the largest an f32 holds (1e39): read
+/// as infinite, it is neither NaN nor infinite, and is named so.
+pub fn past_f32(word: &str) -> bool {
+    word.parse::<f32>().is_ok_and(f32::is_infinite) && word.parse::<f64>().is_ok_and(f64::is_finite)
+}
+
 /// A name from a file as a message shows it: a long one (a path of thousands
 /// of parts, say) cut in the middle.
 pub fn shortened(name: &str) -> String {
@@ -276,8 +282,6 @@ fn header_limits() -> image::Limits {
 /// kilobytes, a few megabytes at most).
 const HEADER_BYTES: u64 = 16 << 20;
 
-/// Why an image of `format` could not be decoded, on one line (the decoders'
-/// messages can run over several).
 /// "a " before a format's name, "an " before "image".
 fn article(kind: &str) -> &'static str {
     match kind.is_empty() {
@@ -286,6 +290,8 @@ fn article(kind: &str) -> &'static str {
     }
 }
 
+/// Why an image of `format` could not be decoded, on one line (the decoders'
+/// messages can run over several).
 fn damaged(format: Option<image::ImageFormat>, e: image::ImageError) -> String {
     let kind = format.map_or("".into(), |f| format!("{f:?} ").to_uppercase());
     if let image::ImageError::Limits(_) = e {

@@ -228,15 +228,16 @@ fn hides(mesh: &Mesh, light: Vec3, camera: Vec3) -> bool {
 /// for sphere:1000000 and grid:1000000 at 64x64), with a third more for room.
 const BYTES_A_TRIANGLE: usize = 80;
 
-/// Refuses a scene whose triangles the memory there is cannot hold, asked for
-/// at once (and given back) before it is made, rather than aborting half way.
+/// Refuses, before it is made, a scene whose triangles the memory there is
+/// cannot hold.
 fn room_for_triangles(triangles: usize, spec: &str) -> Result<(), String> {
+    use crate::pipeline::target::{megabytes, memory_for};
     let bytes = triangles.saturating_mul(BYTES_A_TRIANGLE);
-    match Vec::<u8>::new().try_reserve_exact(bytes) {
-        Ok(()) => Ok(()),
-        Err(_) => Err(format!(
+    match memory_for(bytes) {
+        true => Ok(()),
+        false => Err(format!(
             "out of memory: scene {spec} needs about {}",
-            crate::pipeline::target::megabytes(bytes)
+            megabytes(bytes)
         )),
     }
 }

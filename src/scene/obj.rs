@@ -90,11 +90,10 @@ const OBJ_BYTES_A_BYTE: usize = 4;
 pub fn read_obj(path: &Path) -> Result<(Mesh, Maps, Vec<String>), String> {
     let fail = |why: String| format!("{}: {why}", path.display());
     let file = open_regular(path).map_err(fail)?;
-    // Asked for at once (and given back) before tobj reads it, whose
-    // allocations abort when the memory runs out.
+    // Before tobj reads it, whose allocations abort when memory runs out.
     let size = file.metadata().map_or(0, |m| m.len()) as usize;
     let bytes = size.saturating_mul(OBJ_BYTES_A_BYTE);
-    if Vec::<u8>::new().try_reserve_exact(bytes).is_err() {
+    if !crate::pipeline::target::memory_for(bytes) {
         return Err(fail(format!(
             "out of memory: its {} need about {} to load",
             crate::pipeline::target::megabytes(size),
@@ -899,7 +898,7 @@ impl<R: BufRead> Lines<R> {
         // Words that are not numbers at all are tobj's to report.
         // A number past f32's range (1e39) reads as infinite: said as such.
         match words.find(|w| w.parse::<f32>().is_ok_and(|x| !x.is_finite())) {
-            Some(w) if w.parse::<f64>().is_ok_and(f64::is_finite) => Err(format!(
+            Some(w) if crate::scene::input::past_f32(w) => Err(format!(
                 "{} is past the largest number a coordinate holds (about 3.4e38)",
                 crate::scene::input::shortened(w)
             )),
