@@ -1122,6 +1122,19 @@ fn swapped_channels_other_focal_lengths_and_pasted_rows_are_explained() {
     };
     let (small, _) = app::render(Figure::of(StageName::Depth), &cornell_box(), &small, None);
     write_image(&small, &dir.join("small.png")).unwrap();
+    // The handout's camera on a larger canvas, black around the box: as a
+    // 500 x 500 window centred on a black desktop shows it.
+    let canvas = Settings {
+        camera: rasterlab::Camera {
+            width: 640,
+            height: 560,
+            focal: 500.0,
+            ..settings.camera
+        },
+        ..settings
+    };
+    let (canvas, _) = app::render(Figure::of(StageName::Depth), &cornell_box(), &canvas, None);
+    write_image(&canvas, &dir.join("canvas.png")).unwrap();
     write_image(&Frame::new(500, 500), &dir.join("black.png")).unwrap();
     for (name, note, code) in [
         (
@@ -1132,6 +1145,11 @@ fn swapped_channels_other_focal_lengths_and_pasted_rows_are_explained() {
         (
             "small.png",
             "Note: checked with focal length 500, rasterlab's default, not the image's height 250",
+            0,
+        ),
+        (
+            "canvas.png",
+            "Note: the camera is the handout's, but the image is drawn with focal length 500, not its height 560 (100.0 % of the walls' colours in place); it was checked with --focal 500",
             0,
         ),
     ] {

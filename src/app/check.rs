@@ -111,6 +111,36 @@ fn fit_camera(observed: &Frame, setup: &Setup, options: &CheckOptions) -> Option
         return None;
     }
     let c = pose.camera;
+    // The given place and turns, fitted to the written digits, with another
+    // focal length (a render on a larger canvas, black around it): the
+    // handout's camera itself, so its edges are exact.
+    let place = |c: &Camera| {
+        [
+            c.position.x,
+            c.position.y,
+            c.position.z,
+            c.yaw.to_degrees(),
+            c.pitch.to_degrees(),
+        ]
+        .map(round3)
+    };
+    if place(&c) == place(&setup.camera) {
+        let given = Camera {
+            focal: c.focal,
+            ..setup.camera
+        };
+        let note = format!(
+            "the camera is the handout's, but the image is drawn with focal length {}, not its height {h} ({:.1} % of the walls' colours in place); it was checked with --focal {}",
+            c.focal,
+            pose.score * 100.0,
+            c.focal
+        );
+        let moved = Setup {
+            camera: given,
+            ..setup.clone()
+        };
+        return (c.focal != setup.camera.focal).then_some((moved, note));
+    }
     let focal = match c.focal == h as f32 {
         true => String::new(),
         false => format!(" --focal {}", c.focal),
@@ -130,6 +160,12 @@ fn fit_camera(observed: &Frame, setup: &Setup, options: &CheckOptions) -> Option
         ..setup.clone()
     };
     Some((moved, note))
+}
+
+/// Whether `fitted` stands or turns otherwise than `given`: a camera that only
+/// draws at another focal length shows the handout's figure at another size.
+fn moved_from(fitted: &Camera, given: &Camera) -> bool {
+    (fitted.position, fitted.yaw, fitted.pitch) != (given.position, given.yaw, given.pitch)
 }
 
 /// How much larger a share of the walls' pixels undoing a slip must put in
@@ -424,7 +460,7 @@ fn check_screenshot(
         Some((mut check, moved, note)) => {
             check.notes.push(note);
             check.camera = Some(moved.camera);
-            check.adjusted = true;
+            check.adjusted = moved_from(&moved.camera, &setup.camera);
             setup = moved;
             check
         }
@@ -501,7 +537,7 @@ fn check_screenshot(
             let c = moved.camera;
             if let Some((_, tried)) = attempt(observed.clone(), moved, note, lab3, &mut check) {
                 check.camera = Some(c);
-                check.adjusted = true;
+                check.adjusted = moved_from(&c, &setup.camera);
                 setup = tried;
             }
         }
