@@ -137,7 +137,10 @@ fn bad_arguments_are_one_line_usage_errors() {
     );
     usage_error(&["points", "--focal", "0"], "greater than 0");
     usage_error(&["points", "--time", "0"], "--time");
-    usage_error(&["points", "--size", "-5x5"], "'-5' is not a whole number");
+    usage_error(
+        &["points", "--size", "-5x5"],
+        "each side must be from 1 to 16384 pixels, got '-5x5'",
+    );
     usage_error(&["points", "--time", "-1"], "from 1 to 100000, got '-1'");
     usage_error(&["view", "--fps", "-1"], "from 0 to 1000, got '-1'");
     usage_error(&["view", "--frames", "0"], "from 1 to");

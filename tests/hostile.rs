@@ -1265,6 +1265,30 @@ fn a_file_size_limit_is_an_error_and_leaves_no_temporary_file() {
 }
 
 #[test]
+fn a_folder_made_for_files_that_could_not_be_written_is_taken_away() {
+    let dir = temp_dir("fifth-folder");
+    fs::create_dir(dir.join("kept")).unwrap();
+    // Under 50 blocks of 1 KB the 2000x2000 figures do not fit: the folders
+    // all made (out, and out/figures inside it) go, one already there stays.
+    for out in ["out/figures", "kept/figures"] {
+        let o = shell(
+            &dir,
+            &format!("ulimit -f 50 && exec $B all --size 2000x2000 --out {out}"),
+        );
+        let e = err(&o);
+        assert_eq!(o.status.code(), Some(1), "{e}");
+        assert!(e.contains("File too large"), "{e}");
+    }
+    let mut left: Vec<_> = fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    left.sort();
+    assert_eq!(left, ["kept"]);
+    assert_eq!(fs::read_dir(dir.join("kept")).unwrap().count(), 0);
+}
+
+#[test]
 fn an_output_over_another_users_file_takes_no_set_id_or_stranger_mode() {
     use std::os::unix::fs::{chown, MetadataExt};
     if !is_root() {

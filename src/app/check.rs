@@ -662,7 +662,9 @@ fn check_screenshot(
     }
     let mut written = Vec::new();
     if let Some(dir) = &options.out {
-        crate::app::create_folder(dir)?;
+        // Kept even if this file's pictures cannot be written: the other
+        // files, checked at the same time, write into it too.
+        crate::app::create_folder(dir)?.keep();
         let title = match &check.fitted {
             Some(f) => format!("{stem} against Figure {} as fitted", f.hypothesis.figure()),
             None => format!("{stem}: not a lab 3 image; the closest stage"),

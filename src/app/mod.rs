@@ -420,7 +420,7 @@ pub fn render_all(
         ALL_BYTES_A_PIXEL,
         "the seven figures and their overview for",
     )?;
-    create_folder(dir)?;
+    let folder = create_folder(dir)?;
     let mut files = image_io::AllOrNone::default();
     let mut written = Vec::new();
     let mut frames = Vec::new();
@@ -440,6 +440,7 @@ pub fn render_all(
     let overview = figure_one(frames).map_err(|why| WriteError::new(&path, why))?;
     files.image(&overview, &path)?;
     files.commit()?;
+    folder.keep();
     written.push(path);
     Ok(written)
 }
@@ -452,21 +453,54 @@ const ALL_BYTES_A_PIXEL: usize = 72;
 
 /// Creates the folder `dir` (and its parents) if missing; a file in its place
 /// is named as such rather than as the system's "File exists". Nothing is made
-/// through a link another user planted ([`image_io`]'s rules).
-pub fn create_folder(dir: &Path) -> Result<(), WriteError> {
+/// through a link another user planted ([`image_io`]'s rules). The folders it
+/// made are taken away again, if still empty, unless [`MadeFolder::keep`] is
+/// called: a command that could write nothing leaves nothing behind.
+pub fn create_folder(dir: &Path) -> Result<MadeFolder, WriteError> {
     image_io::refuse_planted_links(dir)?;
     if dir.exists() && !dir.is_dir() {
         return Err(WriteError::new(dir, "not a folder"));
     }
-    std::fs::create_dir_all(dir).map_err(|e| {
-        let why = match e.kind() {
-            std::io::ErrorKind::AlreadyExists | std::io::ErrorKind::NotADirectory => {
-                "a part of it is not a folder".to_string()
-            }
-            _ => e.to_string(),
-        };
-        WriteError::new(dir, why)
-    })
+    // Deepest first, as they are taken away.
+    let made = dir
+        .ancestors()
+        .take_while(|d| !d.as_os_str().is_empty() && !d.exists())
+        .map(Path::to_path_buf)
+        .collect();
+    std::fs::create_dir_all(dir)
+        .map(|()| MadeFolder { made })
+        .map_err(|e| {
+            let why = match e.kind() {
+                std::io::ErrorKind::AlreadyExists | std::io::ErrorKind::NotADirectory => {
+                    "a part of it is not a folder".to_string()
+                }
+                _ => e.to_string(),
+            };
+            WriteError::new(dir, why)
+        })
+}
+
+/// The folders [`create_folder`] made, taken away when dropped if they are
+/// still empty (never a folder with anything in it).
+#[must_use = "dropped, it takes the folders away again"]
+pub struct MadeFolder {
+    made: Vec<PathBuf>,
+}
+
+impl MadeFolder {
+    /// Keeps the folders: the command wrote into them.
+    pub fn keep(mut self) {
+        self.made.clear();
+    }
+}
+
+impl Drop for MadeFolder {
+    fn drop(&mut self) {
+        for dir in &self.made {
+            // Fails, and so keeps it, where anything is inside.
+            let _ = std::fs::remove_dir(dir);
+        }
+    }
 }
 
 /// `ComputePolygonRows` for a polygon given as pixels, printed as the handout's
@@ -545,7 +579,7 @@ pub fn report(
         report::Plan::full()
     };
     // Find an unwritable folder before the minute of measuring, not after it.
-    create_folder(dir)?;
+    let folder = create_folder(dir)?;
     // Created exclusively under a random name, removed when dropped.
     tempfile::Builder::new()
         .prefix(".rasterlab-")
@@ -574,6 +608,7 @@ pub fn report(
         written.push(path);
     }
     files.commit()?;
+    folder.keep();
     Ok(written)
 }
 

@@ -15,11 +15,13 @@ pub fn size(s: &str) -> Result<(u32, u32), String> {
         .ok_or_else(|| format!("expected WIDTHxHEIGHT such as 500x500, got '{s}'"))?;
     let side = |t: &str| -> Result<u32, String> {
         let t = t.trim();
-        let digits = !t.is_empty() && t.bytes().all(|b| b.is_ascii_digit());
-        // A whole number too large for u32 is still a side too long, not a non-number.
+        let all_digits = |t: &str| !t.is_empty() && t.bytes().all(|b| b.is_ascii_digit());
+        // A whole number too large for u32 is still a side too long, and a
+        // negative one a side too short, not a non-number.
         let v: u64 = match t.parse() {
             Ok(v) => v,
-            Err(_) if digits => u64::MAX,
+            Err(_) if all_digits(t) => u64::MAX,
+            Err(_) if t.strip_prefix('-').is_some_and(all_digits) => 0,
             Err(_) => return Err(format!("'{t}' is not a whole number of pixels in '{s}'")),
         };
         if v == 0 || v > MAX_SIDE as u64 {
@@ -233,7 +235,14 @@ mod tests {
         );
         assert!(size("500").is_err());
         assert!(size("20000x1").is_err());
-        assert!(size("-5x5").is_err());
+        assert_eq!(
+            size("-5x5").unwrap_err(),
+            "each side must be from 1 to 16384 pixels, got '-5x5'"
+        );
+        assert_eq!(
+            size("5x-x").unwrap_err(),
+            "'-x' is not a whole number of pixels in '5x-x'"
+        );
     }
 
     #[test]
