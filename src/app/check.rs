@@ -111,20 +111,10 @@ fn fit_camera(observed: &Frame, setup: &Setup, options: &CheckOptions) -> Option
         return None;
     }
     let c = pose.camera;
-    // The given place and turns, fitted to the written digits, with another
-    // focal length (a render on a larger canvas, black around it): the
-    // handout's camera itself, so its edges are exact.
-    let place = |c: &Camera| {
-        [
-            c.position.x,
-            c.position.y,
-            c.position.z,
-            c.yaw.to_degrees(),
-            c.pitch.to_degrees(),
-        ]
-        .map(round3)
-    };
-    if place(&c) == place(&setup.camera) {
+    // The given place and turns with another focal length (a render on a
+    // larger canvas, black around it): the handout's camera itself, so its
+    // edges are exact.
+    if !moved_from(&c, &setup.camera) {
         let given = Camera {
             focal: c.focal,
             ..setup.camera
@@ -162,10 +152,21 @@ fn fit_camera(observed: &Frame, setup: &Setup, options: &CheckOptions) -> Option
     Some((moved, note))
 }
 
-/// Whether `fitted` stands or turns otherwise than `given`: a camera that only
-/// draws at another focal length shows the handout's figure at another size.
+/// Whether `fitted` stands or turns otherwise than `given`, to the three
+/// decimals a fitted camera is written with: a camera that only draws at
+/// another focal length shows the handout's figure at another size.
 fn moved_from(fitted: &Camera, given: &Camera) -> bool {
-    (fitted.position, fitted.yaw, fitted.pitch) != (given.position, given.yaw, given.pitch)
+    let place = |c: &Camera| {
+        [
+            c.position.x,
+            c.position.y,
+            c.position.z,
+            c.yaw.to_degrees(),
+            c.pitch.to_degrees(),
+        ]
+        .map(round3)
+    };
+    place(fitted) != place(given)
 }
 
 /// How much larger a share of the walls' pixels undoing a slip must put in
